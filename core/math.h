@@ -1,0 +1,48 @@
+// Basic maths types and helpers shared by every module (GLM is the vector library).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace iris {
+
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using dvec3 = glm::dvec3;
+using ivec2 = glm::ivec2;
+using mat3 = glm::mat3;
+using mat4 = glm::mat4;
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInvPi = 0.31830988618379067154f;
+constexpr float kInv2Pi = 0.15915494309189533577f;
+constexpr float kInv4Pi = 0.07957747154594766788f;
+constexpr float kPiOver2 = 1.57079632679489661923f;
+constexpr float kPiOver4 = 0.78539816339744830961f;
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+template <typename T>
+inline T sqr(T x) { return x * x; }
+
+inline float safeSqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
+inline double safeSqrt(double x) { return std::sqrt(std::max(0.0, x)); }
+inline float safeAcos(float x) { return std::acos(std::clamp(x, -1.0f, 1.0f)); }
+inline float safeAsin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
+
+template <typename T>
+inline T lerp(float t, const T& a, const T& b) { return (1 - t) * a + t * b; }
+
+inline bool isFinite(const vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+/// Transform a point / direction / normal by a 4x4 affine matrix.
+inline vec3 transformPoint(const mat4& m, const vec3& p) { return vec3(m * vec4(p, 1.0f)); }
+inline vec3 transformVector(const mat4& m, const vec3& v) { return mat3(m) * v; }
+inline vec3 transformNormal(const mat4& m, const vec3& n) {
+    return glm::transpose(glm::inverse(mat3(m))) * n;
+}
+
+}  // namespace iris

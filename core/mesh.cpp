@@ -1,0 +1,84 @@
+#include "core/mesh.h"
+
+#include "core/error.h"
+
+namespace iris {
+
+void TriangleMesh::transform(const mat4& m) {
+    for (vec3& p : positions) p = transformPoint(m, p);
+    const mat3 nm = glm::transpose(glm::inverse(mat3(m)));
+    for (vec3& n : normals) {
+        n = nm * n;
+        const float len = glm::length(n);
+        if (len > 0) n /= len;
+    }
+    // A mirroring transform flips the winding; keep geometric normals consistent with normals.
+    if (glm::determinant(mat3(m)) < 0)
+        for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+}
+
+void TriangleMesh::flipNormals() {
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+    for (vec3& n : normals) n = -n;
+}
+
+void TriangleMesh::validate() const {
+    if (indices.size() % 3 != 0) fail(name, ": index count is not a multiple of 3");
+    const size_t nv = positions.size();
+    for (uint32_t i : indices)
+        if (i >= nv) fail(name, ": vertex index ", i, " out of range (", nv, " vertices)");
+    if (!normals.empty() && normals.size() != nv) fail(name, ": normal count differs from vertex count");
+    if (!uvs.empty() && uvs.size() != nv) fail(name, ": uv count differs from vertex count");
+    for (const vec3& p : positions)
+        if (!isFinite(p)) fail(name, ": non-finite vertex position");
+}
+
+TriangleMesh makeRectangle() {
+    TriangleMesh m;
+    m.name = "rectangle";
+    m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    return m;
+}
+
+TriangleMesh makeCube() {
+    TriangleMesh m;
+    m.name = "cube";
+    // Six faces, four vertices each, so that face normals are exact.
+    const vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const vec3& n : normals) {
+        const vec3 a = std::abs(n.x) > 0.5f ? vec3(0, 1, 0) : vec3(1, 0, 0);
+        const vec3 u = glm::cross(a, n), v = glm::cross(n, u);
+        const uint32_t base = uint32_t(m.positions.size());
+        const vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (const vec2& c : corners) {
+            m.positions.push_back(n + c.x * u + c.y * v);
+            m.normals.push_back(n);
+            m.uvs.push_back(0.5f * (c + vec2(1.0f)));
+        }
+        // Counter-clockwise seen from outside: (u, v, n) is right-handed.
+        m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    return m;
+}
+
+TriangleMesh makeDisk(int segments) {
+    TriangleMesh m;
+    m.name = "disk";
+    m.positions.push_back(vec3(0.0f));
+    m.normals.push_back(vec3(0, 0, 1));
+    m.uvs.push_back(vec2(0.0f));
+    for (int i = 0; i < segments; ++i) {
+        const float phi = 2.0f * kPi * i / segments;
+        m.positions.push_back(vec3(std::cos(phi), std::sin(phi), 0.0f));
+        m.normals.push_back(vec3(0, 0, 1));
+        m.uvs.push_back(vec2(1.0f, float(i) / segments));
+    }
+    for (int i = 0; i < segments; ++i)
+        m.indices.insert(m.indices.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % segments)});
+    return m;
+}
+
+}  // namespace iris

@@ -1,0 +1,126 @@
+// Typed, named parameters of one scene object (a Mitsuba-style plugin instance). The scene loader
+// fills them from XML; each plugin's factory reads what it knows and calls checkUnqueried(),
+// which reports every parameter the plugin did not recognise as "file:line: ..." errors.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "core/texture.h"
+#include "spectral/spectrum.h"
+
+namespace iris {
+
+class Properties;
+using PropertiesPtr = std::shared_ptr<Properties>;
+
+/// A spectrum as written in a scene, converted to a Spectrum only when the plugin says which
+/// kind (reflectance, unbounded, illuminant) it needs.
+struct SpectrumValue {
+    enum class Type { Constant, Pairs, File, Blackbody } type = Type::Constant;
+    float constant = 0.0f;
+    std::vector<float> lambdas, values;  // Pairs
+    std::string path;                    // File (absolute or already resolved)
+    float temperature = 6504.0f, scale = 1.0f;  // Blackbody
+};
+
+struct RGBValue {
+    vec3 rgb{0.0f};
+};
+
+struct PointValue {
+    vec3 v{0.0f};
+};
+struct VectorValue {
+    vec3 v{0.0f};
+};
+
+using PropertyValue = std::variant<bool, int64_t, float, std::string, PointValue, VectorValue, RGBValue,
+                                   SpectrumValue, mat4, PropertiesPtr>;
+
+class Properties {
+public:
+    Properties() = default;
+    Properties(std::string tag, std::string type, SourceLocation loc)
+        : tag_(std::move(tag)), type_(std::move(type)), loc_(std::move(loc)) {}
+
+    const std::string& tag() const { return tag_; }    // "bsdf", "texture", "emitter", ...
+    const std::string& type() const { return type_; }  // plugin type, e.g. "diffuse"
+    const std::string& id() const { return id_; }
+    void setId(std::string id) { id_ = std::move(id); }
+    const SourceLocation& location() const { return loc_; }
+    /// Location of a parameter's own element (falls back to the object's location).
+    SourceLocation locationOf(const std::string& name) const;
+
+    /// Set a named parameter; a duplicate name is an error at `loc`.
+    void set(const std::string& name, PropertyValue value, const SourceLocation& loc);
+    /// Unnamed nested objects (e.g. the bsdf inside a twosided, shapes' bsdf without a name).
+    void addChild(PropertiesPtr child) { children_.push_back(std::move(child)); }
+    const std::vector<PropertiesPtr>& children() const { return children_; }
+    bool has(const std::string& name) const { return values_.count(name) > 0; }
+    std::vector<std::string> names() const;
+
+    // Typed getters: the one-argument forms throw a located error when the parameter is missing;
+    // all forms throw when the stored value has the wrong type. Every getter marks the name as used.
+    bool getBool(const std::string& name) const;
+    bool getBool(const std::string& name, bool def) const;
+    int getInt(const std::string& name) const;
+    int getInt(const std::string& name, int def) const;
+    float getFloat(const std::string& name) const;
+    float getFloat(const std::string& name, float def) const;
+    std::string getString(const std::string& name) const;
+    std::string getString(const std::string& name, const std::string& def) const;
+    vec3 getPoint(const std::string& name) const;
+    vec3 getPoint(const std::string& name, const vec3& def) const;
+    vec3 getVector(const std::string& name) const;
+    vec3 getVector(const std::string& name, const vec3& def) const;
+    /// An RGB triple given as <rgb> (also accepts a float, replicated).
+    vec3 getRGB(const std::string& name, const vec3& def) const;
+    mat4 getTransform(const std::string& name, const mat4& def = mat4(1.0f)) const;
+
+    /// Spectrum from a float, rgb, spectrum or blackbody value.
+    SpectrumPtr getSpectrum(const std::string& name, SpectrumKind kind) const;
+    SpectrumPtr getSpectrum(const std::string& name, SpectrumKind kind, float def) const;
+    /// Spectrum texture: any spectrum value, or a nested <texture>.
+    SpectrumTexturePtr getSpectrumTexture(const std::string& name, SpectrumKind kind) const;
+    SpectrumTexturePtr getSpectrumTexture(const std::string& name, SpectrumKind kind, float def) const;
+    /// Float texture: a float, or a nested <texture>.
+    FloatTexturePtr getFloatTexture(const std::string& name) const;
+    FloatTexturePtr getFloatTexture(const std::string& name, float def) const;
+    /// A nested object given by name (or nullptr when absent and not required).
+    PropertiesPtr getObject(const std::string& name, bool required = true) const;
+
+    /// Throw "file:line: unknown parameter 'x' of <tag> 'type' (known: ...)" for the first
+    /// parameter that no getter has read.
+    void checkUnqueried() const;
+
+    /// Cache for the object built from these properties (shared by every <ref> to the same id).
+    mutable std::shared_ptr<void> instance;
+
+private:
+    struct Entry {
+        PropertyValue value;
+        SourceLocation loc;
+    };
+    const Entry* find(const std::string& name) const;
+    bool present(const std::string& name) const;
+    const Entry& require(const std::string& name) const;
+    [[noreturn]] void typeError(const std::string& name, const char* expected) const;
+
+    std::string tag_, type_, id_;
+    SourceLocation loc_;
+    std::map<std::string, Entry> values_;
+    std::vector<PropertiesPtr> children_;
+    mutable std::set<std::string> queried_, asked_;
+};
+
+/// Build a spectrum of the given kind from a scene value (used by Properties and the loader).
+SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
+
+}  // namespace iris

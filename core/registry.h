@@ -1,0 +1,70 @@
+// Plugins registered by name (as in Mitsuba): every material, texture and emitter type registers
+// a factory under its scene-file name; the scene loader creates objects through these registries,
+// so adding a plugin never touches the loader. Registration happens in static initialisers, so
+// the library is linked as a whole archive (see CMakeLists.txt).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/properties.h"
+
+namespace iris {
+
+class Material;
+class Light;
+
+template <typename T, typename... Extra>
+class Registry {
+public:
+    using Factory = std::function<std::shared_ptr<T>(const Properties&, Extra...)>;
+
+    static Registry& instance() {
+        static Registry r;
+        return r;
+    }
+    void add(const std::string& name, Factory f) { factories_[name] = std::move(f); }
+    bool has(const std::string& name) const { return factories_.count(name) > 0; }
+    std::vector<std::string> names() const {
+        std::vector<std::string> n;
+        for (const auto& [k, v] : factories_) n.push_back(k);
+        return n;
+    }
+    /// Create an object; unknown types give "file:line: unknown <tag> type 'x' (supported: ...)".
+    std::shared_ptr<T> create(const Properties& props, Extra... extra) const {
+        const auto it = factories_.find(props.type());
+        if (it == factories_.end()) {
+            std::string list;
+            for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
+            failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")");
+        }
+        auto obj = it->second(props, extra...);
+        props.checkUnqueried();
+        return obj;
+    }
+
+private:
+    std::map<std::string, Factory> factories_;
+};
+
+using MaterialRegistry = Registry<Material>;
+using SpectrumTextureRegistry = Registry<SpectrumTexture, SpectrumKind>;
+using FloatTextureRegistry = Registry<FloatTexture>;
+using LightRegistry = Registry<Light>;
+
+/// Static registration helper: `static Registrar<MaterialRegistry> reg("diffuse", &create);`
+template <typename R>
+struct Registrar {
+    Registrar(const std::string& name, typename R::Factory f) { R::instance().add(name, std::move(f)); }
+};
+
+#define IRIS_CONCAT_IMPL(a, b) a##b
+#define IRIS_CONCAT(a, b) IRIS_CONCAT_IMPL(a, b)
+/// IRIS_REGISTER(MaterialRegistry, "diffuse", factoryFunction);
+#define IRIS_REGISTER(REGISTRY, NAME, FACTORY) \
+    static ::iris::Registrar<::iris::REGISTRY> IRIS_CONCAT(irisRegistrar_, __LINE__)(NAME, FACTORY)
+
+}  // namespace iris

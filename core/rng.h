@@ -1,0 +1,68 @@
+// Random numbers. PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically
+// Good Algorithms for Random Number Generation", pcg32 XSH-RR variant) and a deterministic
+// per-(pixel, sample) sampler, so images do not depend on the thread count or tile order.
+#pragma once
+
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace iris {
+
+/// SplitMix64 finaliser (Steele et al. 2014), used to derive independent seeds.
+inline uint64_t mix64(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+class Pcg32 {
+public:
+    Pcg32() { seed(0x853c49e6748fea9bull, 0xda3e39cb94b95bdbull); }
+    Pcg32(uint64_t state, uint64_t stream) { seed(state, stream); }
+
+    void seed(uint64_t initState, uint64_t stream) {
+        state_ = 0;
+        inc_ = (stream << 1u) | 1u;
+        nextU32();
+        state_ += initState;
+        nextU32();
+    }
+
+    uint32_t nextU32() {
+        const uint64_t old = state_;
+        state_ = old * 0x5851f42d4c957f2dull + inc_;
+        const uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+        const uint32_t rot = uint32_t(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+    }
+
+    /// Uniform float in [0, 1).
+    float uniform() { return std::min(kOneMinusEpsilon, float(nextU32()) * 0x1p-32f); }
+    double uniformDouble() { return double((uint64_t(nextU32()) << 21) ^ nextU32()) * 0x1p-53; }
+
+private:
+    uint64_t state_, inc_;
+};
+
+/// Independent random sampler for one (pixel, sample index) pair: the stream depends only on the
+/// render seed, the pixel and the sample index, never on scheduling.
+class Sampler {
+public:
+    Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
+        : rng_(mix64(seed ^ mix64(pixelIndex * 0x9e3779b97f4a7c15ull + sampleIndex)),
+               mix64(pixelIndex) ^ seed) {}
+    explicit Sampler(uint64_t seed) : rng_(mix64(seed), seed) {}
+
+    float get1D() { return rng_.uniform(); }
+    vec2 get2D() {
+        const float a = rng_.uniform();
+        return vec2(a, rng_.uniform());
+    }
+
+private:
+    Pcg32 rng_;
+};
+
+}  // namespace iris

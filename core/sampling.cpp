@@ -1,0 +1,82 @@
+#include "core/sampling.h"
+
+#include <algorithm>
+
+namespace iris {
+
+Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.end()), cdf_(f.size() + 1) {
+    const int n = int(f.size());
+    for (float& v : func_) v = std::isfinite(v) ? std::abs(v) : 0.0f;
+    cdf_[0] = 0;
+    // Accumulate in double so long tables keep a monotone, accurate CDF.
+    double acc = 0;
+    std::vector<double> c(n + 1, 0.0);
+    for (int i = 0; i < n; ++i) {
+        acc += double(func_[i]) / n;
+        c[i + 1] = acc;
+    }
+    funcInt_ = float(acc);
+    for (int i = 1; i <= n; ++i) cdf_[i] = acc > 0 ? float(c[i] / acc) : float(i) / n;
+    cdf_[n] = 1.0f;
+}
+
+float Distribution1D::sampleContinuous(float u, float* pdf, int* offset) const {
+    const int n = count();
+    // Largest index with cdf_[i] <= u.
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const int o = std::clamp(int(it - cdf_.begin()) - 1, 0, n - 1);
+    if (offset) *offset = o;
+    float du = u - cdf_[o];
+    const float width = cdf_[o + 1] - cdf_[o];
+    if (width > 0) du /= width;
+    if (pdf) *pdf = funcInt_ > 0 ? func_[o] / funcInt_ : 1.0f;
+    return std::min((o + du) / n, kOneMinusEpsilon);
+}
+
+int Distribution1D::sampleDiscrete(float u, float* pmf, float* uRemapped) const {
+    const int n = count();
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const int o = std::clamp(int(it - cdf_.begin()) - 1, 0, n - 1);
+    if (pmf) *pmf = discretePmf(o);
+    if (uRemapped) {
+        const float width = cdf_[o + 1] - cdf_[o];
+        *uRemapped = width > 0 ? std::min((u - cdf_[o]) / width, kOneMinusEpsilon) : 0.0f;
+    }
+    return o;
+}
+
+float Distribution1D::pdf(float x) const {
+    if (funcInt_ <= 0) return 0;
+    const int o = std::clamp(int(x * count()), 0, count() - 1);
+    return func_[o] / funcInt_;
+}
+
+Distribution2D::Distribution2D(std::span<const float> f, int nu, int nv) {
+    conditional_.reserve(nv);
+    std::vector<float> marginal(nv);
+    for (int v = 0; v < nv; ++v) {
+        conditional_.emplace_back(f.subspan(size_t(v) * nu, nu));
+        marginal[v] = conditional_.back().integral();
+    }
+    marginal_ = Distribution1D(marginal);
+}
+
+vec2 Distribution2D::sampleContinuous(const vec2& u, float* pdf) const {
+    float pdfs[2];
+    int v;
+    const float d1 = marginal_.sampleContinuous(u.y, &pdfs[1], &v);
+    const float d0 = conditional_[v].sampleContinuous(u.x, &pdfs[0]);
+    if (pdf) *pdf = pdfs[0] * pdfs[1];
+    return vec2(d0, d1);
+}
+
+float Distribution2D::pdf(const vec2& p) const {
+    const int nv = marginal_.count();
+    const int iv = std::clamp(int(p.y * nv), 0, nv - 1);
+    const auto& cond = conditional_[iv];
+    const int iu = std::clamp(int(p.x * cond.count()), 0, cond.count() - 1);
+    if (marginal_.integral() <= 0) return 0;
+    return cond.pdf((iu + 0.5f) / cond.count()) * cond.integral() / marginal_.integral();
+}
+
+}  // namespace iris

@@ -1,0 +1,64 @@
+// The BSDF interface every material implements. All directions are unit vectors in the local
+// shading frame (normal = +z) and point away from the surface: wo towards the viewer (or the
+// previous path vertex), wi towards the light (or the next vertex). Values are per wavelength.
+//
+// Conventions (pbrt-v4 §9.1, Mitsuba 3):
+//   eval(wo, wi)   = f(wo, wi), the BSDF without the cosine factor; 0 for delta lobes.
+//   pdf(wo, wi)    = solid-angle density of sample(); 0 for delta lobes.
+//   sample(wo,...) = wi ~ pdf, with f; for delta lobes pdf is the discrete lobe probability and
+//                    f the delta lobe's coefficient divided by |cos θi| (so f·|cosθi|/pdf is the
+//                    path weight in every case).
+// One-sided materials (Mitsuba semantics) return 0 when wo.z <= 0; see the twosided wrapper.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "core/frame.h"
+#include "spectral/sampled_spectrum.h"
+
+namespace iris {
+
+enum class TransportMode { Radiance, Importance };
+
+enum BSDFFlags : uint32_t {
+    kBSDFReflection = 1u << 0,
+    kBSDFTransmission = 1u << 1,
+    kBSDFDiffuse = 1u << 2,
+    kBSDFGlossy = 1u << 3,
+    kBSDFSpecular = 1u << 4,
+};
+
+struct BSDFSample {
+    SampledSpectrum f;   // BSDF value for the sampled direction (see the file comment)
+    vec3 wi{0.0f};       // sampled direction, local frame
+    float pdf = 0.0f;    // solid-angle density, or discrete probability for specular lobes
+    uint32_t flags = 0;  // the sampled lobe: reflection/transmission × diffuse/glossy/specular
+    float eta = 1.0f;    // relative IOR crossed for transmission (for Russian roulette scaling)
+
+    bool isSpecular() const { return flags & kBSDFSpecular; }
+    bool isTransmission() const { return flags & kBSDFTransmission; }
+    /// Path throughput weight f·|cosθi|/pdf.
+    SampledSpectrum weight() const { return pdf > 0 ? f * (std::abs(wi.z) / pdf) : SampledSpectrum(f.size()); }
+};
+
+class BSDF {
+public:
+    virtual ~BSDF() = default;  // never called for arena-allocated BSDFs (must be trivial)
+
+    virtual SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const = 0;
+    /// uc: 1D sample for lobe selection; u: 2D sample for the direction.
+    virtual std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const = 0;
+    virtual float pdf(const vec3& wo, const vec3& wi, TransportMode mode) const = 0;
+    /// Union of the lobes this BSDF has (BSDFFlags).
+    virtual uint32_t flags() const = 0;
+
+    bool isSpecularOnly() const {
+        const uint32_t f = flags();
+        return (f & kBSDFSpecular) && !(f & (kBSDFDiffuse | kBSDFGlossy));
+    }
+    /// True if next-event estimation can contribute (some non-delta lobe exists).
+    bool hasNonSpecular() const { return flags() & (kBSDFDiffuse | kBSDFGlossy); }
+};
+
+}  // namespace iris

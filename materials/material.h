@@ -1,0 +1,39 @@
+// A material turns the textures and spectra a scene gives it into a BSDF at one surface point
+// and for one set of wavelengths. BSDFs live in the per-thread Arena for one path sample.
+#pragma once
+
+#include <memory>
+
+#include "core/arena.h"
+#include "core/frame.h"
+#include "core/texture.h"
+#include "materials/bsdf.h"
+#include "spectral/wavelengths.h"
+
+namespace iris {
+
+/// What a material knows about the surface point.
+struct ShadingPoint {
+    TextureQuery tex;       // uv and position for texture lookups
+    Frame shading;          // shading frame (smooth normal, tangent from dp/du when available)
+    vec3 ng{0, 0, 1};       // geometric normal (world)
+    vec3 dpdu{1, 0, 0};     // surface tangent along u (world), for anisotropy and normal maps
+};
+
+class Material {
+public:
+    virtual ~Material() = default;
+
+    /// BSDF at this point for these wavelengths. A material whose parameters vary with wavelength
+    /// in a way that makes directions wavelength-dependent (dispersive refraction) calls
+    /// wl.terminateSecondary(). Returns nullptr for a surface that only marks a boundary.
+    virtual const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const = 0;
+
+    /// Optional perturbation of the shading frame (normal / bump mapping, thesis' tilted n0).
+    /// The default returns the frame unchanged.
+    virtual Frame shadingFrame(const ShadingPoint& sp) const { return sp.shading; }
+};
+
+using MaterialPtr = std::shared_ptr<const Material>;
+
+}  // namespace iris

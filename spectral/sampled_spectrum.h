@@ -1,0 +1,113 @@
+// A spectral quantity at the N wavelengths a path carries (N chosen per run, 1..kMaxWavelengths).
+// In RGB mode N = 3 and the entries are the linear Rec.709 R, G, B channels.
+#pragma once
+
+#include <cassert>
+#include <cmath>
+
+#include "core/math.h"
+
+namespace iris {
+
+constexpr int kMaxWavelengths = 32;
+
+class SampledSpectrum {
+public:
+    SampledSpectrum() = default;
+    explicit SampledSpectrum(int n, float c = 0.0f) : n_(n) {
+        assert(n >= 0 && n <= kMaxWavelengths);
+        for (int i = 0; i < n_; ++i) v_[i] = c;
+    }
+
+    int size() const { return n_; }
+    float operator[](int i) const { return v_[i]; }
+    float& operator[](int i) { return v_[i]; }
+
+#define IRIS_SPECTRUM_OP(OP)                                                          \
+    SampledSpectrum& operator OP##=(const SampledSpectrum& o) {                       \
+        assert(o.n_ == n_);                                                           \
+        for (int i = 0; i < n_; ++i) v_[i] OP## = o.v_[i];                            \
+        return *this;                                                                 \
+    }                                                                                 \
+    SampledSpectrum& operator OP##=(float s) {                                        \
+        for (int i = 0; i < n_; ++i) v_[i] OP## = s;                                  \
+        return *this;                                                                 \
+    }                                                                                 \
+    friend SampledSpectrum operator OP(SampledSpectrum a, const SampledSpectrum& b) { \
+        return a OP## = b;                                                            \
+    }                                                                                 \
+    friend SampledSpectrum operator OP(SampledSpectrum a, float s) { return a OP## = s; }
+    IRIS_SPECTRUM_OP(+)
+    IRIS_SPECTRUM_OP(-)
+    IRIS_SPECTRUM_OP(*)
+    IRIS_SPECTRUM_OP(/)
+#undef IRIS_SPECTRUM_OP
+    friend SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
+    friend SampledSpectrum operator+(float s, SampledSpectrum a) { return a += s; }
+    friend SampledSpectrum operator-(float s, const SampledSpectrum& a) {
+        SampledSpectrum r(a.n_);
+        for (int i = 0; i < a.n_; ++i) r.v_[i] = s - a.v_[i];
+        return r;
+    }
+    SampledSpectrum operator-() const {
+        SampledSpectrum r(n_);
+        for (int i = 0; i < n_; ++i) r.v_[i] = -v_[i];
+        return r;
+    }
+
+    /// Component-wise division that returns 0 where the divisor is 0 (for pdf ratios).
+    friend SampledSpectrum safeDiv(const SampledSpectrum& a, const SampledSpectrum& b) {
+        SampledSpectrum r(a.n_);
+        for (int i = 0; i < a.n_; ++i) r.v_[i] = b.v_[i] != 0 ? a.v_[i] / b.v_[i] : 0.0f;
+        return r;
+    }
+
+    bool isBlack() const {
+        for (int i = 0; i < n_; ++i)
+            if (v_[i] != 0) return false;
+        return true;
+    }
+    bool hasNonFinite() const {
+        for (int i = 0; i < n_; ++i)
+            if (!std::isfinite(v_[i])) return true;
+        return false;
+    }
+    bool hasNegative() const {
+        for (int i = 0; i < n_; ++i)
+            if (v_[i] < 0) return true;
+        return false;
+    }
+    float maxValue() const {
+        float m = n_ > 0 ? v_[0] : 0.0f;
+        for (int i = 1; i < n_; ++i) m = std::max(m, v_[i]);
+        return m;
+    }
+    float minValue() const {
+        float m = n_ > 0 ? v_[0] : 0.0f;
+        for (int i = 1; i < n_; ++i) m = std::min(m, v_[i]);
+        return m;
+    }
+    float average() const {
+        float s = 0;
+        for (int i = 0; i < n_; ++i) s += v_[i];
+        return n_ > 0 ? s / n_ : 0.0f;
+    }
+
+    template <typename F>
+    friend SampledSpectrum map(const SampledSpectrum& a, F&& f) {
+        SampledSpectrum r(a.n_);
+        for (int i = 0; i < a.n_; ++i) r.v_[i] = f(a.v_[i]);
+        return r;
+    }
+    friend SampledSpectrum sqrt(const SampledSpectrum& a) { return map(a, [](float x) { return safeSqrt(x); }); }
+    friend SampledSpectrum exp(const SampledSpectrum& a) { return map(a, [](float x) { return std::exp(x); }); }
+    friend SampledSpectrum clampZero(const SampledSpectrum& a) {
+        return map(a, [](float x) { return std::max(0.0f, x); });
+    }
+
+private:
+    int n_ = 0;
+    float v_[kMaxWavelengths];
+};
+
+}  // namespace iris

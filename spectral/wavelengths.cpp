@@ -1,0 +1,77 @@
+#include "spectral/wavelengths.h"
+
+#include "core/error.h"
+
+namespace iris {
+
+namespace {
+constexpr float kVisA = 0.0072f;     // 1/nm
+constexpr float kVisCenter = 538.0f;  // nm
+// ∫ 1/cosh²(a(λ−c)) dλ = tanh(a(λ−c))/a.
+float visibleCdfRaw(float lambda) { return std::tanh(kVisA * (lambda - kVisCenter)) / kVisA; }
+const float kVisNorm = visibleCdfRaw(kLambdaMax) - visibleCdfRaw(kLambdaMin);
+}  // namespace
+
+float visibleWavelengthPdf(float lambda) {
+    if (lambda < kLambdaMin || lambda > kLambdaMax) return 0.0f;
+    return 1.0f / (kVisNorm * sqr(std::cosh(kVisA * (lambda - kVisCenter))));
+}
+
+float sampleVisibleWavelength(float u) {
+    // Invert F(λ) = (tanh(a(λ−c)) − tanh(a(λmin−c))) / (a·norm).
+    const float t = std::tanh(kVisA * (kLambdaMin - kVisCenter)) + u * kVisA * kVisNorm;
+    const float lambda = kVisCenter + std::atanh(std::clamp(t, -0.99999994f, 0.99999994f)) / kVisA;
+    return std::clamp(lambda, kLambdaMin, kLambdaMax);
+}
+
+SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
+    if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
+    SampledWavelengths wl;
+    wl.n_ = n;
+    for (int i = 0; i < n; ++i) {
+        float up = u + float(i) / n;
+        if (up >= 1.0f) up -= 1.0f;
+        wl.lambda_[i] = sampleVisibleWavelength(up);
+        wl.pdf_[i] = visibleWavelengthPdf(wl.lambda_[i]);
+    }
+    return wl;
+}
+
+SampledWavelengths SampledWavelengths::sampleUniform(float u, int n) {
+    if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
+    SampledWavelengths wl;
+    wl.n_ = n;
+    const float range = kLambdaMax - kLambdaMin;
+    for (int i = 0; i < n; ++i) {
+        float up = u + float(i) / n;
+        if (up >= 1.0f) up -= 1.0f;
+        wl.lambda_[i] = kLambdaMin + up * range;
+        wl.pdf_[i] = 1.0f / range;
+    }
+    return wl;
+}
+
+SampledWavelengths SampledWavelengths::rgb(const vec3& channelLambdas) {
+    SampledWavelengths wl;
+    wl.n_ = 3;
+    wl.rgb_ = true;
+    for (int i = 0; i < 3; ++i) {
+        wl.lambda_[i] = channelLambdas[i];
+        wl.pdf_[i] = 1.0f;
+    }
+    return wl;
+}
+
+void SampledWavelengths::terminateSecondary() {
+    if (rgb_ || secondaryTerminated()) return;
+    for (int i = 1; i < n_; ++i) pdf_[i] = 0.0f;
+    pdf_[0] /= float(n_);
+}
+
+bool SampledWavelengths::secondaryTerminated() const {
+    for (int i = 1; i < n_; ++i)
+        if (pdf_[i] != 0.0f) return false;
+    return n_ > 1;
+}
+
+}  // namespace iris

@@ -1,0 +1,83 @@
+// Wavelength sampling: the visible-importance pdf is normalised, matches a histogram of its
+// sampler, and hero rotations are stratified.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/rng.h"
+#include "spectral/wavelengths.h"
+
+using namespace iris;
+
+TEST(Wavelengths, VisiblePdfIntegratesToOne) {
+    // Midpoint rule with 0.01 nm steps: error far below the tolerance for this smooth pdf.
+    double integral = 0;
+    const int n = 47000;
+    const double h = (kLambdaMax - kLambdaMin) / n;
+    for (int i = 0; i < n; ++i) integral += visibleWavelengthPdf(float(kLambdaMin + (i + 0.5) * h)) * h;
+    EXPECT_NEAR(integral, 1.0, 1e-4);
+    EXPECT_EQ(visibleWavelengthPdf(kLambdaMin - 1), 0.0f);
+    EXPECT_EQ(visibleWavelengthPdf(kLambdaMax + 1), 0.0f);
+}
+
+TEST(Wavelengths, SamplerMatchesPdfHistogram) {
+    // Chi-square test of 200k samples in 47 bins of 10 nm against the integrated pdf.
+    const int bins = 47, samples = 200000;
+    std::vector<double> counts(bins, 0.0);
+    Pcg32 rng(7, 3);
+    for (int i = 0; i < samples; ++i) {
+        const float l = sampleVisibleWavelength(rng.uniform());
+        ASSERT_GE(l, kLambdaMin);
+        ASSERT_LE(l, kLambdaMax);
+        counts[std::min(bins - 1, int((l - kLambdaMin) / 10.0f))] += 1;
+    }
+    double chi2 = 0;
+    for (int b = 0; b < bins; ++b) {
+        double p = 0;
+        for (int k = 0; k < 100; ++k) p += visibleWavelengthPdf(kLambdaMin + 10.0f * b + 0.1f * (k + 0.5f)) * 0.1;
+        const double expected = p * samples;
+        chi2 += sqr(counts[b] - expected) / expected;
+    }
+    // 46 degrees of freedom: the 1e-6 upper quantile is about 110.
+    EXPECT_LT(chi2, 110.0);
+}
+
+TEST(Wavelengths, HeroRotationsAreStratified) {
+    for (int n : {1, 2, 4, 8, 16, 32}) {
+        const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.3f, n);
+        ASSERT_EQ(wl.size(), n);
+        EXPECT_FALSE(wl.isRGB());
+        for (int i = 0; i < n; ++i) {
+            EXPECT_GT(wl.pdf(i), 0.0f);
+            EXPECT_FLOAT_EQ(wl.pdf(i), visibleWavelengthPdf(wl.lambda(i)));
+        }
+        // The primary samples (0.3 + i/n) mod 1 each fall in a different 1/n stratum.
+        std::vector<int> strata(n, 0);
+        for (int i = 0; i < n; ++i) {
+            float u = 0.3f + float(i) / n;
+            if (u >= 1) u -= 1;
+            strata[std::min(n - 1, int(u * n))]++;
+        }
+        for (int s : strata) EXPECT_EQ(s, 1);
+    }
+    EXPECT_THROW(SampledWavelengths::sampleVisible(0.5f, 0), std::exception);
+    EXPECT_THROW(SampledWavelengths::sampleVisible(0.5f, kMaxWavelengths + 1), std::exception);
+}
+
+TEST(Wavelengths, TerminateSecondaryKeepsEstimatorUnbiased) {
+    SampledWavelengths wl = SampledWavelengths::sampleVisible(0.42f, 4);
+    const float heroPdf = wl.pdf(0);
+    wl.terminateSecondary();
+    EXPECT_TRUE(wl.secondaryTerminated());
+    EXPECT_FLOAT_EQ(wl.pdf(0), heroPdf / 4);
+    for (int i = 1; i < 4; ++i) EXPECT_EQ(wl.pdf(i), 0.0f);
+}
+
+TEST(Wavelengths, RgbModeUsesFixedChannels) {
+    const SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    EXPECT_TRUE(wl.isRGB());
+    EXPECT_EQ(wl.size(), 3);
+    EXPECT_EQ(wl.lambda(0), 645.0f);
+    EXPECT_EQ(wl.lambda(2), 445.0f);
+    EXPECT_EQ(wl.pdf(1), 1.0f);
+}
