@@ -44,7 +44,6 @@ struct BSDFSample {
 
 class BSDF {
 public:
-    virtual ~BSDF() = default;  // never called for arena-allocated BSDFs (must be trivial)
 
     virtual SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const = 0;
     /// uc: 1D sample for lobe selection; u: 2D sample for the direction.
@@ -59,6 +58,10 @@ public:
     }
     /// True if next-event estimation can contribute (some non-delta lobe exists).
     bool hasNonSpecular() const { return flags() & (kBSDFDiffuse | kBSDFGlossy); }
+
+protected:
+    // BSDFs live in the Arena and are never destroyed: the destructor is trivial and non-virtual.
+    ~BSDF() = default;
 };
 
 }  // namespace iris
