@@ -1,0 +1,28 @@
+// CIE colorimetric data: the CIE 1931 2° colour matching functions (1 nm, 360–830 nm) and
+// standard illuminant D65, both from the published CIE tables (CIE 015:2018; see cie_tables.cpp).
+// Outside [360, 830] nm every function returns 0.
+#pragma once
+
+#include "core/math.h"
+
+namespace iris::cie {
+
+/// (x̄, ȳ, z̄)(λ), linear interpolation of the 1 nm table.
+vec3 xyzBar(float lambda);
+float xBar(float lambda);
+float yBar(float lambda);
+float zBar(float lambda);
+
+/// CIE standard illuminant D65 relative SPD (100 at 560 nm), linear interpolation of the 5 nm table
+/// (which is how the CIE's own 1 nm table is defined).
+float d65(float lambda);
+
+/// ∫ ȳ(λ) dλ over the table (1 nm rectangle rule on the 1 nm samples, in nm): ≈ 106.857.
+/// Y is normalised by it: Y = ∫ L ȳ dλ / ∫ ȳ dλ, so a constant spectrum 1 has Y = 1.
+double yIntegral();
+
+/// Every table wavelength (nm) visited by the 1 nm quadrature used throughout: 360, 361, …, 830.
+constexpr int kQuadratureFirst = 360;
+constexpr int kQuadratureLast = 830;
+
+}  // namespace iris::cie

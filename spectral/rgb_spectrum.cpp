@@ -1,0 +1,64 @@
+#include "spectral/rgb_spectrum.h"
+
+#include "core/error.h"
+#include "spectral/cie.h"
+#include "spectral/cie_tables.h"
+#include "spectral/color_space.h"
+
+namespace iris {
+
+RGBSpectrum::RGBSpectrum(const vec3& rgb, SpectrumKind kind) : Spectrum(kind), rgb_(rgb) {
+    if (!isFinite(rgb)) fail("RGB spectrum: non-finite value (", rgb.x, ", ", rgb.y, ", ", rgb.z, ")");
+    vec3 shape;
+    if (kind == SpectrumKind::Reflectance) {
+        shape = glm::clamp(rgb, 0.0f, 1.0f);
+        scale_ = 1.0f;
+    } else {
+        if (rgb.x == rgb.y && rgb.y == rgb.z) {
+            // Unbounded greys keep their sign (scale factors may be negative).
+            shape = vec3(kind == SpectrumKind::Illuminant ? std::max(rgb.x, 0.0f) : rgb.x);
+        } else {
+            shape = glm::max(rgb, vec3(0.0f));
+        }
+        const float m = std::max({shape.x, shape.y, shape.z});
+        scale_ = m > 0.0f ? m : 1.0f;
+        if (m > 0.0f) shape /= m;
+    }
+    if (kind == SpectrumKind::Illuminant) d65Scale_ = float(d65YNormalisation());
+
+    if (shape.x == shape.y && shape.y == shape.z) {
+        grey_ = true;
+        level_ = shape.x;
+    } else {
+        const SigmoidFit fit = fitSigmoidPolynomial(shape);
+        poly_ = fit.poly;
+        fitError_ = fit.error;
+    }
+
+    float shapeMax = grey_ ? level_ : poly_.maxValue();
+    if (kind == SpectrumKind::Illuminant) {
+        float d65Max = 0;
+        for (int i = 0; i < cie::tables::kD65Count; ++i) d65Max = std::max(d65Max, cie::tables::kD65[i]);
+        shapeMax *= d65Scale_ * d65Max;
+    }
+    max_ = scale_ * shapeMax;
+}
+
+float RGBSpectrum::eval(float lambda) const {
+    float v = scale_ * (grey_ ? level_ : poly_(lambda));
+    if (d65Scale_ != 0.0f) v *= d65Scale_ * cie::d65(lambda);
+    return v;
+}
+
+SampledSpectrum RGBSpectrum::sample(const SampledWavelengths& wl) const {
+    SampledSpectrum s(wl.size());
+    if (wl.isRGB()) {
+        // Bit-exact RGB mode: the triple as given, for every kind.
+        for (int i = 0; i < 3; ++i) s[i] = rgb_[i];
+        return s;
+    }
+    for (int i = 0; i < wl.size(); ++i) s[i] = eval(wl.lambda(i));
+    return s;
+}
+
+}  // namespace iris
