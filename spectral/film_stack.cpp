@@ -1,0 +1,263 @@
+// Thin-film stack optics: interface coefficients, Airy sums and the transfer-matrix method.
+// Derivations and the numerics choices for ill-conditioned cases are in docs/thin_film.md.
+#include "spectral/film_stack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace iris {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+enum class Pol { S, P };
+
+/// Tilted admittance used for polarisation `pol` (Macleod §2.2): y_s = q, y_p = q/ñ² (the p form
+/// is the impedance of the tangential H field; both give Born & Wolf's r_s, r_p as (y_i−y_j)/(y_i+y_j)).
+complexd admittance(Pol pol, complexd q, complexd ior) { return pol == Pol::S ? q : q / (ior * ior); }
+
+/// e^{z} − 1 without cancellation for small |z| (expm1 of the real part, −2 sin²(y/2) for cos y − 1).
+complexd expm1c(complexd z) {
+    const double x = z.real(), y = z.imag();
+    const double ex = std::exp(x);
+    const double sh = std::sin(0.5 * y);
+    return {std::expm1(x) * std::cos(y) - 2.0 * sh * sh, ex * std::sin(y)};
+}
+
+/// (e^{2iδ} − 1)/(2q) with δ = k0 q d: finite as q → 0 (limit i k0 d), computed without dividing
+/// a cancelled difference by a tiny q.
+complexd halfExpm1OverQ(complexd q, double k0d) {
+    const complexd z = complexd(0.0, 2.0 * k0d) * q;  // 2iδ
+    if (std::abs(z) < 1e-6) return complexd(0.0, k0d) * (1.0 + 0.5 * z + z * z / 6.0);  // series of (e^z−1)/z
+    return expm1c(z) / (2.0 * q);
+}
+
+/// Complex amplitude of one polarisation for the transfer-matrix method; returns {r, T}.
+struct AmpRT {
+    complexd r;
+    double T;
+};
+
+AmpRT transferMatrix(Pol pol, double lambdaNm, double y0, double s, std::span<const Layer> layers,
+                     complexd substrateIor) {
+    // Characteristic matrix of layer j for the e^{−iωt} convention (Born & Wolf 1.6(33); Macleod
+    // eq. 2.57 is the same with i → −i for his e^{+iωt}, ñ = n − ik), multiplied by e^{iδ}:
+    //   e^{iδ} [[cos δ, −i sin δ / y], [−i y sin δ, cos δ]]
+    //     = [[(1+E)/2, (1−E)/(2y)], [y(1−E)/2, (1+E)/2]],   E = e^{2iδ}, |E| ≤ 1 since Im δ ≥ 0.
+    // (1−E)/(2y) and y(1−E)/2 are written through g = (E−1)/(2q): s: −g, −q²g; p: −ñ²g, −q²g/ñ².
+    // [B; C] = Π_j M_j [1; y_sub]; r = (y0 B − C)/(y0 B + C); T = 4 y0 Re(y_sub)/|y0 B + C|² (Macleod
+    // eqs. 2.60–2.62), times |Π e^{iδ_j}|² for the scaling, which is tracked as a logarithm.
+    const double k0 = kTwoPi / lambdaNm;
+    const complexd qSub = normalWaveNumber(substrateIor, s);
+    const complexd ySub = admittance(pol, qSub, substrateIor);
+    complexd B = 1.0, C = ySub;
+    double logScale = 0.0;  // (B, C)_true = (B, C) · e^{logScale}
+    for (auto it = layers.rbegin(); it != layers.rend(); ++it) {
+        const complexd n = it->ior;
+        const complexd q = normalWaveNumber(n, s);
+        const double k0d = k0 * it->thicknessNm;
+        const complexd delta = k0d * q;
+        const complexd E = std::exp(complexd(0.0, 2.0) * delta);  // |E| = e^{−2 Im δ} ≤ 1
+        const complexd g = halfExpm1OverQ(q, k0d);
+        const complexd n2 = n * n;
+        const complexd m00 = 0.5 * (1.0 + E);
+        const complexd m01 = pol == Pol::S ? -g : -(n2 * g);
+        const complexd m10 = pol == Pol::S ? -(q * q * g) : -(q * q * g / n2);
+        const complexd nb = m00 * B + m01 * C;
+        const complexd nc = m10 * B + m00 * C;
+        B = nb;
+        C = nc;
+        logScale += delta.imag();  // true matrix = e^{−iδ}·scaled one, |e^{−iδ}| = e^{Im δ}
+        // Renormalise to keep (B, C) of order one.
+        const double m = std::max(std::abs(B), std::abs(C));
+        if (m > 0 && std::isfinite(m)) {
+            B /= m;
+            C /= m;
+            logScale += std::log(m);
+        }
+    }
+    // (B, C)_true = (B, C) · e^{logScale}: T = 4 y0 Re(y_sub) / (|den|² e^{2 logScale}), evaluated in
+    // logarithms so that thick absorbing stacks underflow gracefully to T = 0.
+    const complexd den = y0 * B + C;
+    const double aden = std::abs(den);
+    if (!(aden > 0) || !std::isfinite(aden)) return {complexd(-1.0, 0.0), 0.0};
+    const complexd r = (y0 * B - C) / den;
+    const double num = 4.0 * y0 * ySub.real();
+    const double T = num > 0 ? std::exp(std::log(num) - 2.0 * std::log(aden) - 2.0 * logScale) : 0.0;
+    return {r, T};
+}
+
+}  // namespace
+
+complexd normalWaveNumber(complexd ior, double sinInvariant) {
+    complexd q = std::sqrt(ior * ior - complexd(sinInvariant * sinInvariant, 0.0));
+    // Decaying branch (e^{−iωt}: the field e^{i k0 q z} decays for Im q > 0); std::sqrt returns the
+    // principal root, which can land on Im < 0 when the radicand's imaginary part is −0.
+    if (q.imag() < 0 || (q.imag() == 0 && q.real() < 0)) q = -q;
+    return q;
+}
+
+FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT) {
+    cosThetaI = std::clamp(cosThetaI, 0.0, 1.0);
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - cosThetaI * cosThetaI));
+    const double s = iorI * sinI;
+    const complexd qi(iorI * cosThetaI, 0.0);
+    const complexd qt = normalWaveNumber(iorT, s);
+    const complexd ni2(iorI * iorI, 0.0), nt2 = iorT * iorT;
+    FresnelAmplitudes a;
+    // Born & Wolf §1.5.2, eqs. (20)–(21), with n cosθ = q.
+    const complexd ds = qi + qt;
+    const complexd dp = nt2 * qi + ni2 * qt;
+    a.rs = (qi - qt) / ds;
+    a.ts = 2.0 * qi / ds;
+    a.rp = (nt2 * qi - ni2 * qt) / dp;
+    a.tp = 2.0 * complexd(iorI, 0.0) * iorT * qi / dp;
+    return a;
+}
+
+FilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT) {
+    return filmStackRT(550.0, cosThetaI, iorI, {}, iorT);
+}
+
+FilmStackResult filmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
+                            std::span<const Layer> layers, complexd substrateIor) {
+    const double c = std::clamp(cosThetaIncident, 0.0, 1.0);
+    const double s = incidentIor * std::sqrt(std::max(0.0, 1.0 - c * c));
+    const double q0 = incidentIor * c;
+    FilmStackResult res;
+    const AmpRT as = transferMatrix(Pol::S, lambdaNm, q0, s, layers, substrateIor);
+    const AmpRT ap = transferMatrix(Pol::P, lambdaNm, q0 / (incidentIor * incidentIor), s, layers, substrateIor);
+    res.Rs = std::min(1.0, std::norm(as.r));
+    res.Rp = std::min(1.0, std::norm(ap.r));
+    res.Ts = std::clamp(as.T, 0.0, 1.0);
+    res.Tp = std::clamp(ap.T, 0.0, 1.0);
+    return res;
+}
+
+namespace {
+
+/// Everything the single-film sums need for one polarisation.
+struct FilmInterfaces {
+    complexd r01, r12;
+    complexd tScaled;           // t01 t12 / y0, so T = y0 Re(y2) |tScaled e^{iδ} Σ|²
+    complexd E;                 // e^{2iδ}
+    complexd halfPhase;         // e^{iδ}
+    double y0;
+    complexd y2;
+};
+
+FilmInterfaces filmInterfaces(Pol pol, double lambdaNm, double cosThetaIncident, double incidentIor,
+                              const Layer& film, complexd substrateIor) {
+    const double c = std::clamp(cosThetaIncident, 0.0, 1.0);
+    const double s = incidentIor * std::sqrt(std::max(0.0, 1.0 - c * c));
+    const complexd q0(incidentIor * c, 0.0);
+    const complexd q1 = normalWaveNumber(film.ior, s);
+    const complexd q2 = normalWaveNumber(substrateIor, s);
+    const complexd y0 = admittance(pol, q0, complexd(incidentIor, 0.0));
+    const complexd y1 = admittance(pol, q1, film.ior);
+    const complexd y2 = admittance(pol, q2, substrateIor);
+    auto safe = [](complexd d) { return d == complexd(0.0, 0.0) ? complexd(1e-300, 0.0) : d; };
+    const complexd d01 = safe(y0 + y1), d12 = safe(y1 + y2);
+    FilmInterfaces f;
+    f.r01 = (y0 - y1) / d01;  // Born & Wolf 1.5(20)–(21) in admittance form
+    f.r12 = (y1 - y2) / d12;
+    // Tangential-field transmission t01 = 2y0/(y0+y1), t12 = 2y1/(y1+y2). T = Re(y2)/y0 |t|²; the
+    // factor y0 is divided out analytically so that grazing incidence (y0 = 0) is exact.
+    f.tScaled = 2.0 / d01 * (2.0 * y1 / d12);  // = t01 t12 / y0
+    const complexd delta = kTwoPi / lambdaNm * film.thicknessNm * q1;
+    f.E = std::exp(complexd(0.0, 2.0) * delta);
+    f.halfPhase = std::exp(complexd(0.0, 1.0) * delta);
+    f.y0 = y0.real();
+    f.y2 = y2;
+    return f;
+}
+
+/// T from the (scaled) transmitted amplitude sum: T = Re(y2)/y0 |y0 · tScaled · Σ|² = y0 Re(y2)|tScaled Σ|².
+double transmittance(const FilmInterfaces& f, complexd sum) {
+    return std::clamp(f.y0 * f.y2.real() * std::norm(f.tScaled * f.halfPhase * sum), 0.0, 1.0);
+}
+
+FilmStackResult combine(const AmpRT& s, const AmpRT& p, bool clampR) {
+    FilmStackResult r;
+    r.Rs = clampR ? std::min(1.0, std::norm(s.r)) : std::norm(s.r);
+    r.Rp = clampR ? std::min(1.0, std::norm(p.r)) : std::norm(p.r);
+    r.Ts = s.T;
+    r.Tp = p.T;
+    return r;
+}
+
+}  // namespace
+
+FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
+                               complexd substrateIor) {
+    AmpRT out[2];
+    for (int k = 0; k < 2; ++k) {
+        const FilmInterfaces f =
+            filmInterfaces(k == 0 ? Pol::S : Pol::P, lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+        // Airy sum (Born & Wolf 7.6(14)): r = (r01 + r12 E)/(1 + r01 r12 E), Σ = 1/(1 + r01 r12 E).
+        const complexd den = 1.0 + f.r01 * f.r12 * f.E;
+        out[k].r = (f.r01 + f.r12 * f.E) / den;
+        out[k].T = transmittance(f, 1.0 / den);
+    }
+    return combine(out[0], out[1], true);
+}
+
+FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                    const Layer& film, complexd substrateIor, int K) {
+    K = std::max(K, 0);
+    AmpRT out[2];
+    for (int k = 0; k < 2; ++k) {
+        const FilmInterfaces f =
+            filmInterfaces(k == 0 ? Pol::S : Pol::P, lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+        // Partial geometric series Σ_{m=0}^{K−1} (r10 r12 E)^m with r10 = −r01 (Heavens §4.2):
+        // r_K = r01 + t01 t10 r12 E Σ,  t01 t10 = 1 − r01²;  t_K = t01 t12 e^{iδ} Σ.
+        const complexd ratio = -f.r01 * f.r12 * f.E;
+        complexd sum = 0.0, term = 1.0;
+        for (int m = 0; m < K; ++m) {
+            sum += term;
+            term *= ratio;
+        }
+        out[k].r = f.r01 + (1.0 - f.r01 * f.r01) * f.r12 * f.E * sum;
+        out[k].T = transmittance(f, sum);
+    }
+    return combine(out[0], out[1], false);
+}
+
+FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                     const Layer& film, complexd substrateIor) {
+    double R[2], T[2];
+    for (int k = 0; k < 2; ++k) {
+        const FilmInterfaces f =
+            filmInterfaces(k == 0 ? Pol::S : Pol::P, lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+        const double R01 = std::min(1.0, std::norm(f.r01)), R12 = std::min(1.0, std::norm(f.r12));
+        const double a = std::norm(f.halfPhase);  // single-pass attenuation e^{−2 Im δ}
+        const double T01 = 1.0 - R01, T12 = 1.0 - R12;
+        // Heavens §4.6: intensities of all internally reflected beams summed without phase.
+        const double loop = R01 * R12 * a * a;  // R10 = R01
+        const double den = 1.0 - loop;
+        if (den <= 0) {  // both interfaces totally reflecting and lossless: nothing enters
+            R[k] = 1.0;
+            T[k] = 0.0;
+            continue;
+        }
+        R[k] = std::min(1.0, R01 + T01 * T01 * R12 * a * a / den);
+        T[k] = std::clamp(T01 * T12 * a / den, 0.0, 1.0 - R[k]);
+    }
+    return FilmStackResult{R[0], R[1], T[0], T[1]};
+}
+
+FilmStackResult singleFilmRT(FilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
+                             const Layer& film, complexd substrateIor) {
+    switch (mode) {
+        case FilmPhaseMode::Exact: return airySingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+        case FilmPhaseMode::Truncated:
+            return truncatedSingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor, K);
+        case FilmPhaseMode::Incoherent:
+            return incoherentSingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+    }
+    return {};
+}
+
+}  // namespace iris

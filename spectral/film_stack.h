@@ -1,0 +1,95 @@
+// Exact optics of thin-film stacks at one wavelength, in double precision with complex indices.
+//
+// Conventions (see docs/thin_film.md): time dependence e^{−iωt}, complex index ñ = n + ik with
+// k ≥ 0 meaning absorption, so a plane wave exp(i(k0 ñ·r − ωt)) decays when Im(ñ) > 0. For a
+// stack lit from a real incident medium n0 at angle θ0 the conserved tangential invariant is
+// s = n0 sinθ0 and every layer j has the normal wave number (divided by k0 = 2π/λ)
+//     q_j = ñ_j cosθ_j = sqrt(ñ_j² − s²),  branch Im(q_j) ≥ 0   (Born & Wolf §1.5.2, §13.2)
+// so evanescent and absorbed waves decay into each layer. Tilted optical admittances
+// (Macleod, "Thin-Film Optical Filters", 4th ed., §2.2): y_s = q, y_p = q/ñ² (the p case is
+// written with the impedance of the tangential H field, which never divides by q and stays
+// finite at grazing incidence and at the critical angle). Every interface coefficient and the
+// characteristic matrices are expressed with these y.
+//
+// Intensity results (R, T) are for s and p separately; unpolarised light is their mean.
+// T is the power fraction entering the substrate (for an absorbing substrate: what it absorbs).
+#pragma once
+
+#include <complex>
+#include <span>
+
+namespace iris {
+
+using complexd = std::complex<double>;
+
+/// One homogeneous layer: complex index ñ = n + ik at the wavelength considered, thickness in nm.
+struct Layer {
+    complexd ior;
+    double thicknessNm = 0.0;
+};
+
+/// Reflectance / transmittance of a stack for s and p polarisation (powers, not amplitudes).
+struct FilmStackResult {
+    double Rs = 0, Rp = 0, Ts = 0, Tp = 0;
+    double R() const { return 0.5 * (Rs + Rp); }  // unpolarised: mean of s and p
+    double T() const { return 0.5 * (Ts + Tp); }
+    double A() const { return 1.0 - R() - T(); }  // absorbed in the layers (≈0 for lossless stacks)
+};
+
+/// Amplitude Fresnel coefficients of one planar interface i→j (Born & Wolf §1.5.2, eqs. 20–21),
+/// for the electric-field amplitudes: r_s = (q_i − q_j)/(q_i + q_j), t_s = 2q_i/(q_i + q_j),
+/// r_p = (ñ_j² q_i − ñ_i² q_j)/(ñ_j² q_i + ñ_i² q_j), t_p = 2 ñ_i ñ_j q_i/(ñ_j² q_i + ñ_i² q_j).
+/// (Born & Wolf's sign convention for r_p: r_p = r_s at normal incidence.)
+struct FresnelAmplitudes {
+    complexd rs, rp, ts, tp;
+};
+
+/// q = ñ cosθ = sqrt(ñ² − s²) with the decaying branch Im(q) ≥ 0 (and Re(q) ≥ 0 when Im(q) = 0).
+complexd normalWaveNumber(complexd ior, double sinInvariant);
+
+/// Interface amplitudes for light in a medium with index `iorI` (real) at cosθi onto `iorT`.
+FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT);
+/// Power reflectance of one interface (|r_s|², |r_p|²) and transmittance into `iorT`
+/// (Re(y_t)/y_i |t|², zero beyond the critical angle). Equals filmStackRT with no layers.
+FilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT);
+
+/// Transfer-matrix (characteristic-matrix) method for any number of layers, top→bottom
+/// (Born & Wolf §1.6.2, Macleod §2.2). `cosThetaIncident` ∈ [0,1] in the real incident medium
+/// `incidentIor` (> 0, may be denser than the substrate: total internal reflection is handled).
+/// Each layer matrix is scaled by e^{iδ_j} so that only e^{2iδ_j}, |e^{2iδ_j}| ≤ 1, appears
+/// (never e^{+κd}); the running vector is renormalised and its log scale tracked for T.
+FilmStackResult filmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
+                            std::span<const Layer> layers, complexd substrateIor);
+
+/// How the internal reflections of a single film are summed (docs/thin_film.md §Phase modes).
+enum class FilmPhaseMode {
+    Exact,       // coherent Airy sum to infinity (closed form)
+    Truncated,   // coherent sum keeping beams that cross the film at most 2K times
+    Incoherent,  // phase-averaged sum of intensities
+};
+
+/// Closed-form Airy summation for one film (Born & Wolf §7.6.1, eqs. 7.6(14)–(15); Heavens,
+/// "Optical Properties of Thin Solid Films", §4.2):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
+/// t = t01 t12 e^{iδ}/(1 + r01 r12 e^{2iδ}),  δ = 2π ñ1 d cosθ1 / λ.
+FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
+                               complexd substrateIor);
+
+/// Coherent sum truncated after K ≥ 0 round trips: reflection keeps the direct beam and K beams
+/// that made 1..K round trips (K = 1: two-beam interference), transmission the K beams with
+/// 0..K−1 round trips (K = 0 gives T = 0). Not energy conserving for finite K: R may exceed 1
+/// for strongly reflecting interfaces; callers that need a reflectance clamp it.
+FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                    const Layer& film, complexd substrateIor, int K);
+
+/// Incoherent (phase-averaged) sum of intensities with the film's single-pass attenuation
+/// a = |e^{iδ}|² = e^{−2 Im δ}:  R = R01 + T01 T10 R12 a² / (1 − R10 R12 a²),
+/// T = T01 T12 a / (1 − R10 R12 a²)  (Heavens §4.6; Macleod §2.5). Interface transmittances are
+/// 1 − R (exact for a lossless film; for an absorbing film the standard approximation).
+FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                     const Layer& film, complexd substrateIor);
+
+/// Dispatch on the phase mode (K is used by Truncated only).
+FilmStackResult singleFilmRT(FilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
+                             const Layer& film, complexd substrateIor);
+
+}  // namespace iris
