@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace iris {
 

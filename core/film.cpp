@@ -1,0 +1,116 @@
+#include "core/film.h"
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace iris {
+
+PixelFilter::PixelFilter(const CameraDescription& d) : type_(d.filter), radius_(d.filterRadius), stddev_(d.gaussianStddev) {
+    if (!(radius_ > 0)) fail("pixel filter radius must be positive, got ", radius_);
+    if (!(stddev_ > 0)) fail("gaussian filter stddev must be positive, got ", stddev_);
+}
+
+vec2 PixelFilter::sample(const vec2& u) const {
+    if (type_ == CameraDescription::Filter::Box) return (2.0f * u - vec2(1.0f)) * radius_;
+    // Truncated Gaussian per axis by inverting its CDF with a few Newton steps on erf.
+    auto sample1 = [this](float v) {
+        const float a = 3.0f * stddev_;
+        const float s = stddev_ * std::sqrt(2.0f);
+        const float ea = std::erf(a / s);
+        const float target = (2.0f * v - 1.0f) * ea;  // erf(x/s) = target
+        float x = 0.0f;
+        for (int i = 0; i < 12; ++i) {
+            const float f = std::erf(x / s) - target;
+            const float df = 2.0f / std::sqrt(kPi) * std::exp(-sqr(x / s)) / s;
+            x = std::clamp(x - f / df, -a, a);
+        }
+        return x;
+    };
+    return vec2(sample1(u.x), sample1(u.y));
+}
+
+Film::Film(int width, int height) : width_(width), height_(height) {
+    if (width <= 0 || height <= 0) fail("film size must be positive, got ", width, "x", height);
+    const uint64_t n = uint64_t(width) * uint64_t(height);
+    if (n > (uint64_t(1) << 28)) fail("film of ", width, "x", height, " pixels is too large (limit 2^28 pixels)");
+    sum_.assign(3 * n, 0.0);
+    count_.assign(n, 0);
+}
+
+vec3 Film::pixel(int x, int y) const {
+    const size_t i = size_t(y) * width_ + x;
+    if (count_[i] == 0) return vec3(0.0f);
+    const double inv = 1.0 / count_[i];
+    return vec3(float(sum_[3 * i] * inv), float(sum_[3 * i + 1] * inv), float(sum_[3 * i + 2] * inv));
+}
+
+uint64_t Film::totalSamples() const {
+    uint64_t s = 0;
+    for (uint32_t c : count_) s += c;
+    return s;
+}
+
+uint32_t Film::minSampleCount() const {
+    uint32_t m = UINT32_MAX;
+    for (uint32_t c : count_) m = std::min(m, c);
+    return count_.empty() ? 0 : m;
+}
+
+std::vector<float> Film::meanImage() const {
+    std::vector<float> img(3 * size_t(width_) * height_);
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const vec3 p = pixel(x, y);
+            const size_t i = 3 * (size_t(y) * width_ + x);
+            img[i] = p.x;
+            img[i + 1] = p.y;
+            img[i + 2] = p.z;
+        }
+    return img;
+}
+
+namespace {
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '1'};
+}
+
+void Film::save(const std::string& path, const std::string& header) const {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        if (!f) fail(path, ": cannot write checkpoint");
+        const uint64_t hlen = header.size();
+        f.write(kMagic, 8);
+        f.write(reinterpret_cast<const char*>(&hlen), sizeof hlen);
+        f.write(header.data(), std::streamsize(hlen));
+        f.write(reinterpret_cast<const char*>(&width_), sizeof width_);
+        f.write(reinterpret_cast<const char*>(&height_), sizeof height_);
+        f.write(reinterpret_cast<const char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+        f.write(reinterpret_cast<const char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
+        if (!f) fail(path, ": error while writing checkpoint");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, ": cannot move checkpoint into place");
+}
+
+void Film::load(const std::string& path, const std::string& header) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) fail(path, ": cannot open checkpoint");
+    char magic[8];
+    uint64_t hlen = 0;
+    f.read(magic, 8);
+    f.read(reinterpret_cast<char*>(&hlen), sizeof hlen);
+    if (!f || std::string(magic, 8) != std::string(kMagic, 8) || hlen > (1u << 20)) fail(path, ": not an iris checkpoint");
+    std::string h(hlen, '\0');
+    f.read(h.data(), std::streamsize(hlen));
+    if (h != header) fail(path, ": checkpoint was made with a different scene or settings");
+    int w = 0, hgt = 0;
+    f.read(reinterpret_cast<char*>(&w), sizeof w);
+    f.read(reinterpret_cast<char*>(&hgt), sizeof hgt);
+    if (!f || w != width_ || hgt != height_) fail(path, ": checkpoint film size differs");
+    f.read(reinterpret_cast<char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+    f.read(reinterpret_cast<char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
+    if (!f) fail(path, ": checkpoint is truncated");
+}
+
+}  // namespace iris

@@ -1,0 +1,143 @@
+#include "integrators/path.h"
+
+#include "core/error.h"
+#include "core/sampling.h"
+#include "integrators/path.h"
+#include "materials/material.h"
+
+namespace iris {
+
+PathIntegrator::PathIntegrator(const Scene& scene, int maxDepth, int rrDepth, bool hideEmitters)
+    : scene_(scene), maxDepth_(maxDepth < 0 ? std::numeric_limits<int>::max() : maxDepth), rrDepth_(rrDepth),
+      hideEmitters_(hideEmitters) {}
+
+SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+                                   PathStats& stats) const {
+    const int n = wl.size();
+    SampledSpectrum L(n, 0.0f), beta(n, 1.0f);
+    Ray ray = cameraRay;
+    bool specularBounce = false;
+    float bsdfPdf = 0.0f;       // solid-angle pdf of the previous BSDF sample (for MIS)
+    vec3 prevP(0.0f);
+    float etaScale = 1.0f;
+    const auto& lights = scene_.lights();
+    const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
+    ++stats.paths;
+
+    // depth = number of path segments so far (the camera ray is segment 1).
+    for (int depth = 1;; ++depth) {
+        ++stats.rays;
+        const std::optional<SurfaceInteraction> hit = scene_.intersect(ray);
+        const bool countEmission = !(hideEmitters_ && depth == 1);
+
+        if (!hit) {
+            if (countEmission)
+                for (const Light* light : scene_.infiniteLights()) {
+                    const SampledSpectrum Le = light->Le(vec3(0.0f), vec3(0.0f), -ray.d, wl);
+                    if (depth == 1 || specularBounce) {
+                        L += beta * Le;
+                    } else {
+                        const float lightPdf = lightSelectPdf * light->pdfLi(prevP, ray.d, nullptr);
+                        L += beta * Le * powerHeuristic(bsdfPdf, lightPdf);
+                    }
+                }
+            break;
+        }
+        const SurfaceInteraction& si = *hit;
+
+        // Emission from an area light that the path hit.
+        if (si.areaLight && countEmission) {
+            const SampledSpectrum Le = si.areaLight->Le(si.p, si.ng, si.wo, wl);
+            if (!Le.isBlack()) {
+                if (depth == 1 || specularBounce) {
+                    L += beta * Le;
+                } else {
+                    const float lightPdf = lightSelectPdf * si.areaLight->pdfLi(prevP, ray.d, &si);
+                    L += beta * Le * powerHeuristic(bsdfPdf, lightPdf);
+                }
+            }
+        }
+        if (depth >= maxDepth_) break;
+
+        ShadingPoint sp;
+        sp.tex.uv = si.uv;
+        sp.tex.p = si.p;
+        sp.ng = si.ng;
+        sp.dpdu = si.dpdu;
+        sp.shading = Frame::fromNormalTangent(si.ns, si.dpdu);
+        const Frame frame = si.material->shadingFrame(sp);
+        sp.shading = frame;
+        const BSDF* bsdf = si.material->getBSDF(sp, wl, arena);
+        if (!bsdf) {  // pure boundary: continue straight through
+            ray = si.spawnRay(ray.d);
+            --depth;
+            continue;
+        }
+        const vec3 wo = frame.toLocal(si.wo);
+
+        // Next-event estimation (a path of depth+1 segments).
+        if (!lights.empty() && bsdf->hasNonSpecular()) {
+            const float uLight = sampler.get1D();
+            const vec2 uL = sampler.get2D();
+            const int li = std::min(int(uLight * lights.size()), int(lights.size()) - 1);
+            const Light& light = *lights[li];
+            if (const auto ls = light.sampleLi(si.p, uL, wl); ls && ls->pdf > 0 && !ls->L.isBlack()) {
+                const vec3 wi = frame.toLocal(ls->wi);
+                SampledSpectrum f = bsdf->eval(wo, wi, TransportMode::Radiance);
+                // Light leaks through shading normals: require the geometric sides to agree.
+                const bool sideOk = glm::dot(ls->wi, si.ng) * wi.z > 0;
+                if (sideOk && !f.isBlack()) {
+                    ++stats.rays;
+                    const bool vis = ls->infinite ? scene_.visibleInfinite(si, ls->wi) : scene_.visible(si, ls->pLight, ls->nLight);
+                    if (vis) {
+                        f *= std::abs(wi.z);
+                        if (light.isDelta()) {
+                            L += beta * f * ls->L / (lightSelectPdf * ls->pdf);
+                        } else {
+                            const float lightPdf = lightSelectPdf * ls->pdf;
+                            const float scatterPdf = bsdf->pdf(wo, wi, TransportMode::Radiance);
+                            L += beta * f * ls->L * (powerHeuristic(lightPdf, scatterPdf) / lightPdf);
+                        }
+                    }
+                }
+            }
+        } else if (!lights.empty()) {
+            // Keep the sample stream aligned regardless of the branch taken.
+            sampler.get1D();
+            sampler.get2D();
+        }
+
+        // Sample the BSDF to continue the path.
+        const float uc = sampler.get1D();
+        const vec2 u = sampler.get2D();
+        const auto bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
+        if (!bs || bs->pdf <= 0 || bs->f.isBlack()) break;
+        const vec3 wiWorld = glm::normalize(frame.toWorld(bs->wi));
+        if (glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
+        beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+        specularBounce = bs->isSpecular();
+        bsdfPdf = bs->pdf;
+        if (bs->isTransmission()) etaScale *= sqr(bs->eta);
+        prevP = si.p;
+        ray = si.spawnRay(wiWorld);
+        if (beta.isBlack() || beta.hasNonFinite()) break;
+
+        // Russian roulette (pbrt-v4 §13.4.4), on throughput with radiance scaling undone.
+        const float uRR = sampler.get1D();
+        if (depth >= rrDepth_) {
+            const float q = std::min(0.95f, (beta * etaScale).maxValue());
+            if (uRR >= q) break;
+            beta /= q;
+        }
+        arena.reset();
+    }
+    return L;
+}
+
+std::unique_ptr<Integrator> Integrator::create(const IntegratorDescription& desc, const Scene& scene) {
+    if (desc.type == "path") return std::make_unique<PathIntegrator>(scene, desc.maxDepth, desc.rrDepth, desc.hideEmitters);
+    if (desc.type == "direct") return std::make_unique<PathIntegrator>(scene, 2, std::numeric_limits<int>::max(), desc.hideEmitters);
+    fail("unknown integrator type '", desc.type, "' (supported: direct, path)");
+}
+
+}  // namespace iris
