@@ -32,6 +32,8 @@ public:
     const std::vector<const Light*>& infiniteLights() const { return infinite_; }
     const SceneBounds& bounds() const { return bounds_; }
     size_t triangleCount() const { return triangles_; }
+    /// The Embree scene (RTCScene), for benchmarks that measure bare traversal.
+    void* embreeScene() const { return scene_; }
 
 private:
     struct ShapeData;

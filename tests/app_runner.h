@@ -1,0 +1,48 @@
+// Helpers for tests that run the built executables (render, compare, merge): paths, a shell
+// runner that captures stderr, and temporary files.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace iris::testing {
+
+/// Folder of the built executables (set by CTest through IRIS_BUILD_DIR; falls back to ./).
+inline std::string buildDir() {
+    const char* d = std::getenv("IRIS_BUILD_DIR");
+    return d ? std::string(d) : std::string(".");
+}
+
+inline std::string appPath(const std::string& app) { return buildDir() + "/" + app; }
+
+struct RunResult {
+    int exitCode = -1;
+    std::string stderrText;
+};
+
+/// Run a shell command line, capturing its stderr; stdout is discarded.
+inline RunResult runCommand(const std::string& cmd) {
+    const std::string errFile = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/iris_test_stderr_" +
+                                std::to_string(::getpid()) + ".txt";
+    const int status = std::system((cmd + " >/dev/null 2>" + errFile).c_str());
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream f(errFile);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    r.stderrText = ss.str();
+    std::remove(errFile.c_str());
+    return r;
+}
+
+inline void writeTextFile(const std::string& path, const std::string& text) {
+    std::ofstream f(path);
+    f << text;
+}
+
+}  // namespace iris::testing
