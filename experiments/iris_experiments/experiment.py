@@ -1,0 +1,183 @@
+"""The command-line driver shared by every experiment script (experiments/<name>.py):
+
+    experiments/<name>.py [--quick] [--parallel N] [--threads T] [--build-dir DIR] [--out DIR]
+                          [--force] [--dry-run] [--slurm] [--collect-only]
+
+An Experiment subclass declares its scenes (SceneSpec), its sweeps for full and quick mode, and an
+analysis that turns the collected rows into tables, figures and conclusions."""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import shlex
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import collect, report, runner, scenes, slurm, sweep, tools
+from .errors import ExperimentError
+
+
+@dataclass
+class Context:
+    """What an analysis gets: the arguments, the output folder, the jobs (by sweep), tool paths."""
+    args: argparse.Namespace
+    out_dir: Path
+    jobs: list
+    build_dir: Path
+    figures: list = field(default_factory=list)
+
+    def by_sweep(self, name: str) -> list:
+        return [j for j in self.jobs if j.sweep == name]
+
+    def compare(self, test: Path, ref: Path) -> dict:
+        return collect.compare(tools.tool("compare", self.build_dir), test, ref)
+
+    def merge(self, inputs, output: Path) -> Path:
+        return collect.merge(tools.tool("merge", self.build_dir), inputs, output)
+
+
+@dataclass
+class Analysis:
+    rows: list                          # one dict per result (written to results.csv / .json)
+    columns: list                       # columns of the main report table
+    conclusions: list                   # sentences computed from the data
+    sections: list = field(default_factory=list)   # extra (heading, markdown) sections
+    figures: list = field(default_factory=list)    # PNG paths (absolute) to embed in the report
+
+
+class Experiment:
+    name = "experiment"
+    title = "Experiment"
+    question = ""
+    scene_specs: dict = {}              # label -> scenes.SceneSpec
+
+    # --- to override -------------------------------------------------------------------------
+    def sweeps(self, quick: bool, args) -> list:
+        raise NotImplementedError
+
+    def analyse(self, ctx: Context) -> Analysis:
+        raise NotImplementedError
+
+    def settings(self, quick: bool) -> dict:
+        return {"mode": "quick" if quick else "full"}
+
+    # --- helpers -----------------------------------------------------------------------------
+    def scene_paths(self) -> dict:
+        return {label: spec.path for label, spec in self.scene_specs.items()}
+
+    def quick_resolution(self, quick: bool, res: int = 48) -> dict:
+        """Per-scene -D res=<res> in quick mode for scenes that declare a 'res' parameter."""
+        if not quick:
+            return {}
+        return {label: {"res": res} for label, spec in self.scene_specs.items() if "res" in spec.declared}
+
+
+def parse_args(exp: Experiment, argv):
+    p = argparse.ArgumentParser(prog=f"experiments/{exp.name}.py", description=f"{exp.title}. {exp.question}")
+    p.add_argument("--quick", action="store_true", help="tiny images and few samples (about a minute)")
+    p.add_argument("--parallel", type=int, default=1, help="render jobs run at the same time (default 1)")
+    p.add_argument("--threads", type=int, default=None, help="render threads per job (default: all cores)")
+    p.add_argument("--build-dir", default=None, help="folder with render/compare/merge (default $IRIS_BUILD_DIR or build/)")
+    p.add_argument("--out", default=None, help="output folder (default experiments/results/<name>[/quick])")
+    p.add_argument("--force", action="store_true", help="re-render images that already exist")
+    p.add_argument("--timeout", type=float, default=None, help="seconds before a render job is killed")
+    p.add_argument("--dry-run", action="store_true", help="print the render commands and exit")
+    p.add_argument("--slurm", action="store_true", help="write a Slurm job-array script instead of rendering")
+    p.add_argument("--slurm-time", default="02:00:00", help="#SBATCH --time per task")
+    p.add_argument("--slurm-cpus", type=int, default=8, help="#SBATCH --cpus-per-task")
+    p.add_argument("--slurm-mem", default="4G", help="#SBATCH --mem")
+    p.add_argument("--slurm-partition", default=None, help="#SBATCH --partition")
+    p.add_argument("--scene", action="append", default=[], metavar="[LABEL=]PATH",
+                   help="render PATH instead of the defined scene LABEL (or of every scene); its materials are "
+                        "then checked from the file only")
+    p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
+    return p.parse_args(argv)
+
+
+def output_dir(exp: Experiment, args) -> Path:
+    if args.out:
+        return Path(args.out).resolve()
+    base = tools.REPO / "experiments" / "results" / exp.name
+    return base / "quick" if args.quick else base
+
+
+def run(exp: Experiment, argv=None) -> int:
+    args = parse_args(exp, sys.argv[1:] if argv is None else argv)
+    try:
+        return _run(exp, args)
+    except ExperimentError as e:
+        print(f"{exp.name}: error: {e}", file=sys.stderr)
+        return 2
+
+
+def override_scenes(exp: Experiment, overrides) -> None:
+    """Apply --scene [LABEL=]PATH (paths relative to the current folder or the repository)."""
+    specs = {k: dataclasses.replace(v) for k, v in exp.scene_specs.items()}
+    for item in overrides:
+        label, _, path = item.rpartition("=")
+        if label and label not in specs:
+            raise ExperimentError(f"--scene {item}: no scene '{label}' in this experiment (known: {', '.join(specs)})")
+        p = Path(path).resolve()
+        rel = str(p.relative_to(tools.REPO)) if p.is_relative_to(tools.REPO) else str(p)
+        for key in ([label] if label else list(specs)):
+            specs[key] = dataclasses.replace(specs[key], path=rel, materials=())
+    exp.scene_specs = specs
+
+
+def _run(exp: Experiment, args) -> int:
+    bdir = tools.build_dir(args.build_dir)
+    out = output_dir(exp, args)
+    override_scenes(exp, args.scene)
+    scenes.check_scenes(exp.scene_specs.values())
+    render = bdir / "render" if (args.slurm or args.dry_run) else tools.tool("render", bdir)
+    sweeps = exp.sweeps(args.quick, args)
+    if args.threads:
+        for s in sweeps:
+            s.fixed.setdefault("threads", args.threads)
+    jobs = sweep.expand(sweeps, out, render)
+
+    if args.dry_run:
+        for j in jobs:
+            print(j.shell())
+        return 0
+    if args.slurm:
+        script = slurm.write_slurm_script(out / f"slurm_{exp.name}.sh", jobs, job_name=f"iris-{exp.name}",
+                                          time=args.slurm_time, cpus_per_task=args.slurm_cpus, mem=args.slurm_mem,
+                                          partition=args.slurm_partition)
+        again = " ".join(shlex.quote(a) for a in ["python3", f"experiments/{exp.name}.py", "--collect-only"] +
+                         (["--quick"] if args.quick else []) + (["--out", str(out)] if args.out else []))
+        print(f"wrote {script} ({len(jobs)} array tasks)\n"
+              f"submit:  jid=$(sbatch --parsable {script})\n"
+              f"collect: sbatch --dependency=afterok:$jid --wrap {shlex.quote(again)}   (or run it after the array ends)")
+        return 0
+
+    if not args.collect_only:
+        print(f"{exp.name}: {len(jobs)} render jobs -> {out}")
+        results = runner.run_local(jobs, parallel=args.parallel, force=args.force, timeout=args.timeout)
+        failed = [r for r in results if not r.ok]
+        if failed:
+            lines = [f"{r.job.output.with_suffix('.log')}: {r.message}" for r in failed[:5]]
+            raise ExperimentError(f"{len(failed)} of {len(jobs)} renders failed:\n  " + "\n  ".join(lines))
+    missing = [j for j in jobs if not j.output.exists()]
+    if missing:
+        raise ExperimentError(f"{len(missing)} renders are missing (first: {missing[0].output}); "
+                              "run without --collect-only or wait for the Slurm array")
+
+    ctx = Context(args, out, jobs, bdir)
+    analysis = exp.analyse(ctx)
+    csv_path = collect.write_csv(analysis.rows, out / "results.csv")
+    collect.write_json({"experiment": exp.name, "settings": exp.settings(args.quick), "rows": analysis.rows},
+                       out / "results.json")
+    table = report.markdown_table(analysis.rows, analysis.columns)
+    command = " ".join(["python3", f"experiments/{exp.name}.py"] + (["--quick"] if args.quick else []))
+    rep = report.write_report(
+        out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
+        settings=exp.settings(args.quick), conclusions=analysis.conclusions,
+        sections=[("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections,
+        figures=[str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures],
+        command=command)
+    print(f"{exp.name}: wrote {rep}")
+    for c in analysis.conclusions:
+        print(f"  - {c}")
+    return 0
