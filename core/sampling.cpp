@@ -28,7 +28,7 @@ float Distribution1D::sampleContinuous(float u, float* pdf, int* offset) const {
     if (offset) *offset = o;
     float du = u - cdf_[o];
     const float width = cdf_[o + 1] - cdf_[o];
-    if (width > 0) du /= width;
+    if (width > 0) du = std::min(du / width, kOneMinusEpsilon);
     if (pdf) *pdf = funcInt_ > 0 ? func_[o] / funcInt_ : 1.0f;
     return std::min((o + du) / n, kOneMinusEpsilon);
 }
