@@ -13,6 +13,7 @@
 #include "core/camera.h"
 #include "core/loader/scene_loader.h"
 #include "core/renderer.h"
+#include "core/rng.h"
 #include "core/sampling.h"
 #include "core/scene.h"
 
