@@ -1,0 +1,26 @@
+// First stage of scene loading: a Mitsuba XML file (0.6 or 2.x/3.x syntax) becomes a list of
+// Properties trees, one per top-level object, with includes inlined, $parameters substituted,
+// <ref>s resolved to the referenced (shared) Properties, 0.6 names upgraded and every "filename"
+// resolved to an absolute path. docs/scene_format.md describes the format.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/properties.h"
+
+namespace iris {
+
+struct ParsedScene {
+    std::string sourceFile;               // the main file (or "<string>")
+    std::vector<PropertiesPtr> objects;   // top-level objects in document order
+};
+
+/// Parse a scene file; `defines` override its <default> values (like mitsuba -D name=value).
+ParsedScene parseSceneFile(const std::string& path, const std::map<std::string, std::string>& defines = {});
+/// Parse scene XML held in memory; relative paths are resolved against `baseDir`.
+ParsedScene parseSceneString(const std::string& xml, const std::string& baseDir,
+                             const std::map<std::string, std::string>& defines = {});
+
+}  // namespace iris
