@@ -164,16 +164,20 @@ def _run(exp: Experiment, args) -> int:
         raise ExperimentError(f"{len(missing)} renders are missing (first: {missing[0].output}); "
                               "run without --collect-only or wait for the Slurm array")
 
+    run_settings = dict(exp.settings(args.quick))
+    run_settings["parallel jobs"] = f"{args.parallel} (render times are only comparable when 1)"
+    run_settings["threads per job"] = args.threads or "all cores"
+    run_settings["render jobs"] = len(jobs)
     ctx = Context(args, out, jobs, bdir)
     analysis = exp.analyse(ctx)
     csv_path = collect.write_csv(analysis.rows, out / "results.csv")
-    collect.write_json({"experiment": exp.name, "settings": exp.settings(args.quick), "rows": analysis.rows},
+    collect.write_json({"experiment": exp.name, "settings": run_settings, "rows": analysis.rows},
                        out / "results.json")
     table = report.markdown_table(analysis.rows, analysis.columns)
     command = " ".join(["python3", f"experiments/{exp.name}.py"] + (["--quick"] if args.quick else []))
     rep = report.write_report(
         out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
-        settings=exp.settings(args.quick), conclusions=analysis.conclusions,
+        settings=run_settings, conclusions=analysis.conclusions,
         sections=[("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections,
         figures=[str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures],
         command=command)

@@ -60,6 +60,7 @@ class Sweep:
     axes: dict = field(default_factory=dict)
     fixed: dict = field(default_factory=dict)
     per_scene: dict = field(default_factory=dict)   # {label: {setting: value}} added for that scene only
+    linked: dict = field(default_factory=dict)      # {source: target}: target takes the source's value
 
     def points(self):
         keys = list(self.axes)
@@ -74,6 +75,8 @@ class Sweep:
                 settings = dict(self.fixed)
                 settings.update(self.per_scene.get(label, {}))
                 settings.update(point)
+                for src, dst in self.linked.items():
+                    settings[dst] = settings[src]
                 stem = "_".join(f"{slug(k)}={slug(format_value(v))}" for k, v in point.items()) or "default"
                 output = Path(out_dir) / "renders" / slug(self.name) / slug(label) / f"{stem}.exr"
                 out.append(Job(index, self.name, scene, label, settings, output,

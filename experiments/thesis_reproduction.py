@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""Reproduction of the experiments of thesis 000 §4 (RGB mode, three channels as in the thesis):
+  Fig. 4.2  film thickness d ∈ {76, 200, 350, 600, 1000} nm
+  Fig. 4.3  film index ηt ∈ {(1.5,1.6,1.8), (1.8,1.7,1.6), (1.49,1.49,1.49)} and channel
+            wavelengths λ ∈ {(645,525,445), (680,520,400)} nm
+  Fig. 4.4  roughness α ∈ {0.9, 0.5, 0.1, 0.05, 0.01} (proposed model)
+  Table 4.5 render time of Granier vs the proposed model at 16–1024 spp, direct (max_depth 2) and
+            global illumination (thesis: the proposed model is 2.7–12 % slower).
+The scenes declare <default> parameters thickness, eta_t ("r, g, b"), wavelengths ("r, g, b" nm),
+alpha (proposed) and max_depth. Each sweep changes one parameter; the others keep the scene's defaults (which should be the
+thesis' Table 3.1 values for Granier and Table 4.2 for the proposed model).
+
+    python3 experiments/thesis_reproduction.py [--quick] [--parallel N] [--slurm] ...
+"""
+import statistics
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from iris_experiments import grid  # noqa: E402
+from iris_experiments.collect import job_row  # noqa: E402
+from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
+from iris_experiments.report import markdown_table  # noqa: E402
+from iris_experiments.scenes import SceneSpec  # noqa: E402
+from iris_experiments.sweep import Sweep, format_value  # noqa: E402
+
+# ---- definition (edit here) -----------------------------------------------------------------
+SCENES = {
+    "granier": SceneSpec("scenes/thesis_granier.xml", materials=("granier",),
+                         params=("thickness", "eta_t", "wavelengths", "max_depth"),
+                         note="thesis Fig. 4.x setup with the Granier material (Table 3.1), being written"),
+    "proposed": SceneSpec("scenes/thesis_proposed.xml", materials=("proposed",),
+                          params=("thickness", "eta_t", "wavelengths", "alpha", "max_depth"),
+                          note="thesis Fig. 4.x setup with the proposed model (Table 4.2), being written"),
+}
+THICKNESS_NM = [76, 200, 350, 600, 1000]                                     # Fig. 4.2
+ETA_T = [(1.5, 1.6, 1.8), (1.8, 1.7, 1.6), (1.49, 1.49, 1.49)]              # Fig. 4.3
+WAVELENGTHS = [(645, 525, 445), (680, 520, 400)]                            # Fig. 4.3
+ALPHA = [0.9, 0.5, 0.1, 0.05, 0.01]                                         # Fig. 4.4
+TIMING_SPP = [16, 64, 256, 1024]                                            # Table 4.5
+DEPTHS = {"direct": 2, "global": 8}
+FULL = {"spp": 256}
+QUICK = {"spp": 4, "res": 32, "timing_spp": [4, 16]}
+# ---------------------------------------------------------------------------------------------
+
+IMAGE_SWEEPS = [("thickness", "thickness", THICKNESS_NM, "Fig. 4.2"), ("eta_t", "eta_t", ETA_T, "Fig. 4.3"),
+                ("wavelengths", "wavelengths", WAVELENGTHS, "Fig. 4.3"), ("alpha", "alpha", ALPHA, "Fig. 4.4")]
+
+
+class ThesisReproduction(Experiment):
+    name = "thesis_reproduction"
+    title = "Reproduction of thesis 000 §4 (Figs. 4.2–4.4, Table 4.5)"
+    question = ("Question: do the Granier and proposed models reproduce the thesis' parameter sweeps, and how much "
+                "slower is the proposed model than Granier (thesis Table 4.5: 2.7–12 %)?")
+    scene_specs = SCENES
+
+    def cfg(self, quick):
+        return QUICK if quick else FULL
+
+    def settings(self, quick):
+        c = self.cfg(quick)
+        return {"mode": "quick" if quick else "full", "render mode": "rgb (three channels, as the thesis)",
+                "spp (image sweeps)": c["spp"], "timing spp": c.get("timing_spp", TIMING_SPP),
+                "max_depth": DEPTHS, "scenes": {k: v.path for k, v in self.scene_specs.items()}}
+
+    def sweeps(self, quick, args):
+        c = self.cfg(quick)
+        per_scene = self.quick_resolution(quick, c.get("res", 48))
+        fixed = {"mode": "rgb", "spp": c["spp"], "seed": 1}
+        sweeps = []
+        for name, key, values, _ in IMAGE_SWEEPS:
+            labels = {l: s.path for l, s in self.scene_specs.items() if key in s.params}
+            # The channel wavelengths are the material's (-D wavelengths=...) and the renderer's RGB
+            # channels (--rgb-wavelengths), kept equal.
+            linked = {"wavelengths": "rgb_wavelengths"} if key == "wavelengths" else {}
+            sweeps.append(Sweep(name, labels, axes={key: values}, fixed=dict(fixed), per_scene=per_scene,
+                                linked=linked))
+        sweeps.append(Sweep("timing", self.scene_paths(),
+                            axes={"max_depth": list(DEPTHS.values()), "spp": c.get("timing_spp", TIMING_SPP)},
+                            fixed={"mode": "rgb", "seed": 1}, per_scene=per_scene))
+        return sweeps
+
+    def analyse(self, ctx):
+        rows, figures, conclusions, sections = [], [], [], []
+        for name, key, values, fig in IMAGE_SWEEPS:
+            jobs = ctx.by_sweep(name)
+            labels = [l for l in self.scene_specs if any(j.label == l for j in jobs)]
+            if not jobs:
+                continue
+            cells = []
+            for label in labels:
+                mine = [j for j in jobs if j.label == label]
+                cells.append([j.output for j in mine])
+                steps = []
+                for a, b in zip(mine, mine[1:]):
+                    m = ctx.compare(b.output, a.output)
+                    steps.append(m["de00_mean"])
+                    rows.append(job_row(b, {"sweep_parameter": key, "value": format_value(b.settings[key]),
+                                            "previous_value": format_value(a.settings[key]),
+                                            "de00_mean_vs_previous": m["de00_mean"],
+                                            "de00_p99_vs_previous": m["de00_p99"]}))
+                if steps:
+                    i = max(range(len(steps)), key=lambda k: steps[k])
+                    conclusions.append(
+                        f"{fig} {label}, {key}: neighbouring values change the image by mean ΔE00 {min(steps):.3g} .. "
+                        f"{max(steps):.3g}; the largest change is {format_value(mine[i].settings[key])} → "
+                        f"{format_value(mine[i + 1].settings[key])}.")
+            figures.append(grid.image_grid(cells, ctx.out_dir / f"sweep_{name}.png", row_labels=labels,
+                                           col_labels=[f"{key} = {format_value(v)}" for v in values],
+                                           title=f"{fig}: {key}"))
+        # Table 4.5: time ratio proposed / Granier per (depth, spp).
+        timing = ctx.by_sweep("timing")
+        times = {}
+        for j in timing:
+            r = job_row(j)
+            times[(j.label, j.settings["max_depth"], j.settings["spp"])] = r.get("render_time_s")
+        trows = []
+        for depth_name, depth in DEPTHS.items():
+            for spp in sorted({j.settings["spp"] for j in timing}):
+                g, p = times.get(("granier", depth, spp)), times.get(("proposed", depth, spp))
+                row = {"illumination": depth_name, "spp": spp, "granier_s": g, "proposed_s": p}
+                if g and p:
+                    row["proposed_slower_percent"] = 100.0 * (p / g - 1.0)
+                trows.append(row)
+        ratios = [r["proposed_slower_percent"] for r in trows if "proposed_slower_percent" in r]
+        if ratios:
+            conclusions.append(
+                f"Table 4.5: the proposed model takes {min(ratios):+.1f} % .. {max(ratios):+.1f} % (median "
+                f"{statistics.median(ratios):+.1f} %) time relative to Granier; the thesis reports +2.7 % .. +12 %.")
+        elif timing:
+            conclusions.append("Table 4.5: timings need both the granier and the proposed scene.")
+        sections.append(("Table 4.5: render time", markdown_table(
+            trows, ["illumination", "spp", "granier_s", "proposed_s", "proposed_slower_percent"])))
+        cols = ["sweep", "scene", "sweep_parameter", "previous_value", "value", "de00_mean_vs_previous",
+                "de00_p99_vs_previous", "render_time_s"]
+        return Analysis(rows, cols, conclusions, sections=sections, figures=figures)
+
+
+if __name__ == "__main__":
+    sys.exit(run(ThesisReproduction()))
