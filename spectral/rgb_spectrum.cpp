@@ -13,6 +13,14 @@ RGBSpectrum::RGBSpectrum(const vec3& rgb, SpectrumKind kind) : Spectrum(kind), r
     if (kind == SpectrumKind::Reflectance) {
         shape = glm::clamp(rgb, 0.0f, 1.0f);
         scale_ = 1.0f;
+        // Near-black colours: fit the same chromaticity at brightness kDarkLevel and scale down.
+        // The projection is linear, so the RGB is still reproduced, and s stays in [0, 1]; a direct
+        // fit of e.g. (1e-6, 0, 0) needs huge coefficients (slow, and a bright invisible lobe).
+        const float m = std::max({shape.x, shape.y, shape.z});
+        if (m > 0.0f && m < kDarkLevel && !(shape.x == shape.y && shape.y == shape.z)) {
+            scale_ = m / kDarkLevel;
+            shape *= kDarkLevel / m;
+        }
     } else {
         if (rgb.x == rgb.y && rgb.y == rgb.z) {
             // Unbounded greys keep their sign (scale factors may be negative).

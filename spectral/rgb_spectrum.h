@@ -1,5 +1,6 @@
 // Spectra given as a linear Rec.709 RGB triple (spectral/spectrum_factory.h, makeRGBSpectrum):
 //   Reflectance: s(λ), the Jakob–Hanika sigmoid polynomial fitted to rgb ∈ [0,1]³ (bounded [0,1]);
+//                near-black colours (max < kDarkLevel) use (m/kDarkLevel) · s_{rgb·kDarkLevel/m};
 //   Unbounded:   m · s_{rgb/m}(λ), m = max(rgb);
 //   Illuminant:  m · s_{rgb/m}(λ) · D65(λ) / (D65's Y), so RGB (1,1,1) emits D65 with Y = 1.
 // Greys (r = g = b) are exactly constant (Illuminant: exactly D65). In RGB mode every kind returns
@@ -13,6 +14,9 @@ namespace iris {
 
 class RGBSpectrum final : public Spectrum {
 public:
+    /// Reflectances darker than this (max component) are fitted at this brightness and scaled.
+    static constexpr float kDarkLevel = 0.05f;
+
     RGBSpectrum(const vec3& rgb, SpectrumKind kind);
 
     float eval(float lambda) const override;

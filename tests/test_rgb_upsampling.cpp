@@ -65,6 +65,32 @@ TEST(RgbUpsampling, RandomColoursRoundTrip) {
     std::printf("[ measured ] worst reflectance round-trip error over 500 random colours in [0.02, 0.98]^3: %.3g\n", worst);
 }
 
+TEST(RgbUpsampling, ExtremeAndDarkColours) {
+    // Gamut corners and near-black colours: still reproduced, finite, within [0, 1], and dark
+    // colours have no bright invisible lobe (max value of the same order as the colour).
+    const vec3 colours[] = {vec3(1, 0, 0),    vec3(0, 1, 0),       vec3(0, 0, 1),        vec3(1, 1, 0),
+                            vec3(0, 0.5f, 0.5f), vec3(1e-6f, 0, 0), vec3(0.001f, 0, 0), vec3(0.01f, 0.001f, 0),
+                            vec3(0.002f, 0.001f, 0.0005f), vec3(0.049f, 0.0f, 0.02f)};
+    for (const vec3& rgb : colours) {
+        const RGBSpectrum s(rgb, SpectrumKind::Reflectance);
+        const vec3 back = rgbProjection([&](float l) { return s.eval(l); }, SpectrumKind::Reflectance);
+        EXPECT_LT(maxAbsDiff(back, rgb), 1e-5f) << rgb.x << " " << rgb.y << " " << rgb.z;
+        for (int l = 360; l <= 830; ++l) {
+            const float v = s.eval(float(l));
+            ASSERT_TRUE(std::isfinite(v));
+            ASSERT_GE(v, 0.0f);
+            ASSERT_LE(v, 1.0f);
+        }
+        const float m = std::max({rgb.x, rgb.y, rgb.z});
+        if (m < RGBSpectrum::kDarkLevel) EXPECT_LE(s.maxValue(), m / RGBSpectrum::kDarkLevel) << rgb.x;
+    }
+    // Out-of-range reflectances are clamped for the spectral curve (RGB mode keeps the triple).
+    const RGBSpectrum over(vec3(1.5f, -0.2f, 0.5f), SpectrumKind::Reflectance);
+    const vec3 back = rgbProjection([&](float l) { return over.eval(l); }, SpectrumKind::Reflectance);
+    EXPECT_LT(maxAbsDiff(back, vec3(1.0f, 0.0f, 0.5f)), 1e-5f);
+    EXPECT_EQ(over.rgbValue(), vec3(1.5f, -0.2f, 0.5f));
+}
+
 TEST(RgbUpsampling, GreysAreExactConstants) {
     for (float g : {0.0f, 0.05f, 0.18f, 0.5f, 0.9f, 1.0f}) {
         const SpectrumPtr s = makeRGBSpectrum(vec3(g), SpectrumKind::Reflectance);
