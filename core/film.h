@@ -15,15 +15,19 @@
 namespace iris {
 
 /// Samples a film-plane offset (pixels) from the pixel filter: box of half-width r, or a Gaussian
-/// of standard deviation σ truncated at 3σ (Mitsuba's default gaussian: σ = 0.5 px).
+/// of standard deviation σ truncated at 3σ (Mitsuba's default gaussian: σ = 0.5 px). The Gaussian
+/// is sampled per axis through a tabulated inverse CDF (built once, 1025 entries, linear
+/// interpolation; the table is exact at its nodes to float precision).
 class PixelFilter {
 public:
     explicit PixelFilter(const CameraDescription& d);
     vec2 sample(const vec2& u) const;
 
 private:
+    float sample1D(float u) const;
     CameraDescription::Filter type_;
     float radius_, stddev_;
+    std::vector<float> inverseCdf_;
 };
 
 class Film {
