@@ -1,0 +1,214 @@
+// Thin-film coating parameters and their per-path evaluation (see film_coating.h).
+#include "spectral/film_coating.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/error.h"
+#include "materials/belcour_barla.h"
+
+namespace iris {
+
+// ---- IorSpec ----
+
+IorSpec IorSpec::fromProperties(const Properties& p, const std::string& name, float def, const vec3& channelLambdas) {
+    IorSpec s(def);
+    s.lambdas_ = channelLambdas;
+    if (!p.has(name)) return s;
+    try {
+        s.values_ = p.getRGB(name, vec3(def));  // float or per-channel triple
+        s.perChannel_ = true;
+    } catch (const Error&) {
+        s.spectrum_ = p.getSpectrum(name, SpectrumKind::Unbounded);
+    }
+    // Validate over the visible range (and the channel values).
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
+        const float v = s.at(l);
+        if (!std::isfinite(v)) failAt(p.locationOf(name), "parameter '", name, "' is not finite at ", l, " nm");
+    }
+    return s;
+}
+
+float IorSpec::at(float lambda) const {
+    if (spectrum_) return spectrum_->eval(lambda);
+    if (!perChannel_) return values_[0];
+    std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
+                                               {lambdas_[2], values_[2]}}};
+    std::sort(pts.begin(), pts.end());
+    if (lambda <= pts[0].first) return pts[0].second;
+    if (lambda >= pts[2].first) return pts[2].second;
+    const int i = lambda <= pts[1].first ? 0 : 1;
+    const float span = pts[i + 1].first - pts[i].first;
+    if (!(span > 0)) return pts[i + 1].second;
+    return lerp((lambda - pts[i].first) / span, pts[i].second, pts[i + 1].second);
+}
+
+float IorSpec::sample(const SampledWavelengths& wl, int k) const {
+    if (perChannel_ && wl.isRGB() && k < 3) return values_[k];  // the triple, unchanged
+    return at(wl.lambda(k));
+}
+
+// ---- FilmCoatingSpec ----
+
+namespace {
+
+void checkPositive(const Properties& p, const std::string& name, const IorSpec& s, bool allowZero) {
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
+        const float v = s.at(l);
+        if (allowZero ? v < 0 : v <= 0)
+            failAt(p.locationOf(name), "parameter '", name, "' must be ", allowZero ? ">= 0" : "> 0", ", got ", v,
+                   " at ", l, " nm");
+    }
+}
+
+}  // namespace
+
+FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
+                                                float defThickness) {
+    FilmCoatingSpec s;
+    s.extIor = p.getFloat("ext_ior", 1.0f);
+    if (!(s.extIor > 0)) failAt(p.locationOf("ext_ior"), "ext_ior must be > 0, got ", s.extIor);
+    s.filmIor = IorSpec::fromProperties(p, "film_ior", 1.5f);
+    s.filmK = IorSpec::fromProperties(p, "film_k", 0.0f);
+    checkPositive(p, "film_ior", s.filmIor, false);
+    checkPositive(p, "film_k", s.filmK, true);
+    s.thickness = p.getFloatTexture("thickness", defThickness);
+    if (s.thickness->isConstant() && s.thickness->eval({}) < 0)
+        failAt(p.locationOf("thickness"), "thickness must be >= 0 nm, got ", s.thickness->eval({}));
+    for (int i = 1; i <= 8; ++i) {
+        const std::string base = "layer" + std::to_string(i);
+        if (!p.has(base + "_ior")) {
+            if (p.has(base + "_thickness") || p.has(base + "_k"))
+                failAt(p.location(), base, "_ior is required when ", base, "_thickness or ", base, "_k is given");
+            break;
+        }
+        ExtraLayer l;
+        l.ior = IorSpec::fromProperties(p, base + "_ior", 1.5f);
+        l.k = IorSpec::fromProperties(p, base + "_k", 0.0f);
+        checkPositive(p, base + "_ior", l.ior, false);
+        checkPositive(p, base + "_k", l.k, true);
+        l.thicknessNm = p.getFloat(base + "_thickness");
+        if (!(l.thicknessNm >= 0)) failAt(p.locationOf(base + "_thickness"), base, "_thickness must be >= 0 nm");
+        s.extra.push_back(l);
+    }
+    s.substrateEta = IorSpec::fromProperties(p, "substrate_eta", defSubstrateEta);
+    s.substrateK = IorSpec::fromProperties(p, "substrate_k", defSubstrateK);
+    checkPositive(p, "substrate_eta", s.substrateEta, false);
+    checkPositive(p, "substrate_k", s.substrateK, true);
+
+    const std::string mode = p.getString("phase_mode", "exact");
+    if (mode == "exact") s.mode = FilmPhaseMode::Exact;
+    else if (mode == "incoherent") s.mode = FilmPhaseMode::Incoherent;
+    else if (mode == "truncated") s.mode = FilmPhaseMode::Truncated;
+    else failAt(p.locationOf("phase_mode"), "phase_mode must be 'exact', 'incoherent' or 'truncated', got '", mode, "'");
+    s.bounces = p.getInt("bounces", 1);
+    if (s.bounces < 0) failAt(p.locationOf("bounces"), "bounces must be >= 0, got ", s.bounces);
+    if (s.mode != FilmPhaseMode::Exact && !s.extra.empty())
+        failAt(p.locationOf("phase_mode"), "phase_mode '", mode, "' applies to a single film; extra layers need 'exact'");
+
+    const std::string rgb = p.getString("rgb_mode", "point");
+    if (rgb == "point") s.rgbMode = FilmRGBMode::Point;
+    else if (rgb == "belcour_barla") s.rgbMode = FilmRGBMode::BelcourBarla;
+    else failAt(p.locationOf("rgb_mode"), "rgb_mode must be 'point' or 'belcour_barla', got '", rgb, "'");
+    if (s.rgbMode == FilmRGBMode::BelcourBarla) {
+        if (!s.extra.empty()) failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' supports a single film only");
+        if (s.mode != FilmPhaseMode::Exact)
+            failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' integrates the exact Airy sum; use phase_mode 'exact'");
+        for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f)
+            if (s.filmK.at(l) != 0)
+                failAt(p.locationOf("film_k"), "rgb_mode 'belcour_barla' needs a non-absorbing film (film_k = 0)");
+    }
+    return s;
+}
+
+// ---- FilmCoating ----
+
+FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena)
+    : n_(wl.size()),
+      nExtra_(int(spec.extra.size())),
+      bounces_(spec.bounces),
+      mode_(spec.mode),
+      belcourBarla_(wl.isRGB() && spec.rgbMode == FilmRGBMode::BelcourBarla),
+      extIor_(spec.extIor),
+      thickness_(std::max(0.0f, spec.thickness->eval(q))) {
+    const int stride = 1 + nExtra_;
+    layers_ = static_cast<Layer*>(arena.allocate(sizeof(Layer) * n_ * stride, alignof(Layer)));
+    for (int k = 0; k < n_; ++k) {
+        lambda_[k] = wl.lambda(k);
+        film_[k] = complexd(spec.filmIor.sample(wl, k), spec.filmK.sample(wl, k));
+        substrate_[k] = complexd(spec.substrateEta.sample(wl, k), spec.substrateK.sample(wl, k));
+        Layer* row = layers_ + k * stride;
+        new (row) Layer{film_[k], thickness_};
+        for (int j = 0; j < nExtra_; ++j) {
+            const auto& e = spec.extra[j];
+            new (row + 1 + j) Layer{complexd(e.ior.sample(wl, k), e.k.sample(wl, k)), e.thicknessNm};
+        }
+    }
+}
+
+namespace {
+/// Truncated sums are not energy conserving (film_stack.h): clamp R to [0,1] and T to [0, 1 − R].
+FilmStackResult clampEnergy(FilmStackResult r) {
+    r.Rs = std::clamp(r.Rs, 0.0, 1.0);
+    r.Rp = std::clamp(r.Rp, 0.0, 1.0);
+    r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
+    r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
+    return r;
+}
+}  // namespace
+
+FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
+    const int stride = 1 + nExtra_;
+    if (nExtra_ == 0)
+        return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
+    return filmStackRT(lambda_[k], cosTheta, extIor_, std::span<const Layer>(layers_ + k * stride, stride), substrate_[k]);
+}
+
+FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
+    const int stride = 1 + nExtra_;
+    const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
+    if (nExtra_ == 0)
+        return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
+    Layer rev[9];
+    for (int j = 0; j < stride; ++j) rev[j] = layers_[k * stride + stride - 1 - j];
+    return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
+}
+
+SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
+    SampledSpectrum R(n_);
+    for (int k = 0; k < n_; ++k) {
+        if (belcourBarla_)
+            R[k] = float(belcourBarlaReflectance(k, cosTheta, extIor_, film_[k].real(), thickness_, substrate_[k]));
+        else
+            R[k] = float(stackRT(k, cosTheta).R());
+    }
+    return R;
+}
+
+void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
+    R = SampledSpectrum(n_);
+    T = SampledSpectrum(n_);
+    for (int k = 0; k < n_; ++k) {
+        const FilmStackResult r = stackRT(k, cosTheta);
+        R[k] = float(r.R());
+        T[k] = float(r.T());
+        if (belcourBarla_ && substrate_[k].imag() == 0) {
+            // Non-absorbing film (required) on a dielectric: T = 1 − R, with the integrated R.
+            R[k] = float(belcourBarlaReflectance(k, cosTheta, extIor_, film_[k].real(), thickness_, substrate_[k]));
+            T[k] = 1.0f - R[k];
+        }
+    }
+}
+
+void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
+    R = SampledSpectrum(n_);
+    T = SampledSpectrum(n_);
+    for (int k = 0; k < n_; ++k) {
+        const FilmStackResult r = stackRTFromBelow(k, cosTheta);
+        R[k] = float(r.R());
+        T[k] = float(r.T());
+    }
+}
+
+}  // namespace iris

@@ -1,0 +1,105 @@
+// A thin-film coating as materials use it: the scene-level description (indices as spectra or
+// per-channel triples, thickness texture, extra layers, substrate, phase mode) and its per-path
+// instance with the complex indices at the path's wavelengths, which evaluates the exact stack
+// reflectance / transmittance (spectral/film_stack.h) at any angle. Parameters: docs/thin_film.md.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/arena.h"
+#include "core/properties.h"
+#include "core/texture.h"
+#include "spectral/film_stack.h"
+#include "spectral/sampled_spectrum.h"
+#include "spectral/wavelengths.h"
+
+namespace iris {
+
+/// An index of refraction given as a spectrum, or as a per-channel triple at channel wavelengths
+/// (RGB mode: the triple itself, unchanged; spectral mode: piecewise-linear through the triple
+/// across the channel wavelengths, constant outside).
+class IorSpec {
+public:
+    IorSpec() = default;
+    explicit IorSpec(float c) : values_(c) {}
+    /// Read `name` (float, rgb triple or spectrum) from p; `def` when absent.
+    static IorSpec fromProperties(const Properties& p, const std::string& name, float def,
+                                  const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
+    /// Value for entry k of a path's wavelengths.
+    float sample(const SampledWavelengths& wl, int k) const;
+    /// Value at a wavelength (per-channel triples interpolated).
+    float at(float lambda) const;
+
+private:
+    bool perChannel_ = false;
+    vec3 values_{1.0f};
+    vec3 lambdas_{645.0f, 525.0f, 445.0f};
+    SpectrumPtr spectrum_;
+};
+
+enum class FilmSubstrate { Conductor, Dielectric };
+enum class FilmRGBMode { Point, BelcourBarla };
+
+/// Scene-level description of a coating (shared by thinfilm and iridescent_diffuse).
+struct FilmCoatingSpec {
+    float extIor = 1.0f;  // incident (exterior) medium, real
+    IorSpec filmIor{1.5f}, filmK{0.0f};
+    FloatTexturePtr thickness;  // nm
+    struct ExtraLayer {
+        IorSpec ior, k;
+        float thicknessNm = 0;
+    };
+    std::vector<ExtraLayer> extra;  // below the film, top → bottom
+    IorSpec substrateEta{1.5f}, substrateK{0.0f};
+    FilmPhaseMode mode = FilmPhaseMode::Exact;
+    int bounces = 1;
+    FilmRGBMode rgbMode = FilmRGBMode::Point;
+
+    /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
+    /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (substrate_eta, substrate_k
+    /// with the given defaults). Throws a located iris::Error on invalid values.
+    static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
+                                          float defThickness = 300.0f);
+};
+
+/// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
+class FilmCoating {
+public:
+    /// Evaluate the spec at a surface point for wavelengths wl (extra layers go to the arena).
+    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena);
+
+    int size() const { return n_; }
+    double thicknessNm() const { return thickness_; }
+
+    /// Reflectance of the stack for light from the exterior at cosθ (to the interface normal), per
+    /// entry: RGB Belcour–Barla mode → spectrally integrated RGB; otherwise the exact / truncated /
+    /// incoherent stack at each wavelength (truncated sums clamped to [0, 1]).
+    SampledSpectrum reflectance(float cosTheta) const;
+    /// Reflectance and transmittance (into the substrate) at each wavelength. Belcour–Barla mode
+    /// over a non-absorbing substrate: the integrated R and T = 1 − R (the film is lossless there);
+    /// over an absorbing one, point values.
+    void reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
+    /// The stack lit from the substrate side (substrate must be a real dielectric medium): light
+    /// in the substrate at cosθ towards the film, exiting into the exterior medium.
+    void fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
+    /// Stack result at entry k (exterior side).
+    FilmStackResult stackRT(int k, double cosTheta) const;
+    FilmStackResult stackRTFromBelow(int k, double cosTheta) const;
+
+    double extIor() const { return extIor_; }
+    complexd substrateIor(int k) const { return substrate_[k]; }
+
+private:
+    int n_ = 0, nExtra_ = 0, bounces_ = 1;
+    FilmPhaseMode mode_ = FilmPhaseMode::Exact;
+    bool belcourBarla_ = false;
+    double extIor_ = 1.0, thickness_ = 0.0;
+    double lambda_[kMaxWavelengths];
+    complexd film_[kMaxWavelengths];
+    complexd substrate_[kMaxWavelengths];
+    Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
+};
+
+}  // namespace iris
