@@ -49,6 +49,7 @@ Film::Film(int width, int height) : width_(width), height_(height) {
     const uint64_t n = uint64_t(width) * uint64_t(height);
     if (n > (uint64_t(1) << 28)) fail("film of ", width, "x", height, " pixels is too large (limit 2^28 pixels)");
     sum_.assign(3 * n, 0.0);
+    sumSq_.assign(3 * n, 0.0);
     count_.assign(n, 0);
 }
 
@@ -84,8 +85,22 @@ std::vector<float> Film::meanImage() const {
     return img;
 }
 
+std::vector<float> Film::varianceOfMeanImage() const {
+    std::vector<float> img(3 * size_t(width_) * height_, 0.0f);
+    for (size_t i = 0; i < count_.size(); ++i) {
+        const double n = count_[i];
+        if (n < 2) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double mean = sum_[3 * i + c] / n;
+            const double var = std::max(0.0, (sumSq_[3 * i + c] - n * mean * mean) / (n - 1));
+            img[3 * i + c] = float(var / n);
+        }
+    }
+    return img;
+}
+
 namespace {
-constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '1'};
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '2'};
 }
 
 void Film::save(const std::string& path, const std::string& header) const {
@@ -100,6 +115,7 @@ void Film::save(const std::string& path, const std::string& header) const {
         f.write(reinterpret_cast<const char*>(&width_), sizeof width_);
         f.write(reinterpret_cast<const char*>(&height_), sizeof height_);
         f.write(reinterpret_cast<const char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+        f.write(reinterpret_cast<const char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
         f.write(reinterpret_cast<const char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
         if (!f) fail(path, ": error while writing checkpoint");
     }
@@ -122,6 +138,7 @@ void Film::load(const std::string& path, const std::string& header) {
     f.read(reinterpret_cast<char*>(&hgt), sizeof hgt);
     if (!f || w != width_ || hgt != height_) fail(path, ": checkpoint film size differs");
     f.read(reinterpret_cast<char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+    f.read(reinterpret_cast<char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
     f.read(reinterpret_cast<char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
     if (!f) fail(path, ": checkpoint is truncated");
 }

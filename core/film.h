@@ -38,9 +38,10 @@ public:
 
     void addSample(int x, int y, const vec3& value) {
         const size_t i = size_t(y) * width_ + x;
-        sum_[3 * i] += value.x;
-        sum_[3 * i + 1] += value.y;
-        sum_[3 * i + 2] += value.z;
+        for (int c = 0; c < 3; ++c) {
+            sum_[3 * i + c] += value[c];
+            sumSq_[3 * i + c] += double(value[c]) * value[c];
+        }
         count_[i] += 1;
     }
     /// Mean of the samples at a pixel (0 if none).
@@ -51,6 +52,9 @@ public:
 
     /// Interleaved 3-channel mean image.
     std::vector<float> meanImage() const;
+    /// Interleaved 3-channel estimated variance of each pixel's mean: s²/n with the unbiased
+    /// sample variance s² (0 where fewer than 2 samples).
+    std::vector<float> varianceOfMeanImage() const;
 
     /// Exact binary state (sums and counts) for checkpoints. Throws iris::Error naming the file.
     void save(const std::string& path, const std::string& header) const;
@@ -59,7 +63,7 @@ public:
 
 private:
     int width_, height_;
-    std::vector<double> sum_;
+    std::vector<double> sum_, sumSq_;
     std::vector<uint32_t> count_;
 };
 

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -12,10 +13,13 @@
 
 namespace iris::testing {
 
-/// Folder of the built executables (set by CTest through IRIS_BUILD_DIR; falls back to ./).
+/// Folder of the built executables: IRIS_BUILD_DIR if set (CTest sets it), else the folder of
+/// the running test binary (the apps are built beside it).
 inline std::string buildDir() {
-    const char* d = std::getenv("IRIS_BUILD_DIR");
-    return d ? std::string(d) : std::string(".");
+    if (const char* d = std::getenv("IRIS_BUILD_DIR")) return d;
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string(".") : exe.parent_path().string();
 }
 
 inline std::string appPath(const std::string& app) { return buildDir() + "/" + app; }

@@ -53,6 +53,9 @@ TEST(Film, MeanAndCounts) {
     EXPECT_EQ(film.pixel(1, 1), vec3(2, 2, 2));
     EXPECT_EQ(film.sampleCount(1, 1), 2u);
     EXPECT_EQ(film.pixel(0, 0), vec3(0.0f));
+    // Sample variance of {1, 3} is 2; variance of the mean over 2 samples is 1.
+    EXPECT_FLOAT_EQ(film.varianceOfMeanImage()[3 * (1 * 3 + 1)], 1.0f);
+    EXPECT_FLOAT_EQ(film.varianceOfMeanImage()[3 * (1 * 3 + 1) + 1], 0.0f);
     EXPECT_EQ(film.minSampleCount(), 0u);
     EXPECT_EQ(film.totalSamples(), 2u);
     EXPECT_THROW(Film(0, 5), Error);
