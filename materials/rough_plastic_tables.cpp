@@ -1,0 +1,389 @@
+// Rough dielectric transmittance tables (see rough_plastic_tables.h).
+#include "materials/rough_plastic_tables.h"
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include <unistd.h>
+
+#include "core/error.h"
+#include "materials/fresnel.h"
+
+namespace iris {
+namespace {
+
+constexpr uint32_t kFormatVersion = 1;
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'R', 'P', 'T', 'B'};
+
+/// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n, Press et al.,
+/// Numerical Recipes 3rd ed. §4.6.1).
+struct GaussLegendre {
+    std::vector<double> x, w;
+    explicit GaussLegendre(int n) : x(n), w(n) {
+        for (int i = 0; i < (n + 1) / 2; ++i) {
+            double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), pp = 0;
+            for (int it = 0; it < 100; ++it) {
+                double p1 = 1, p2 = 0;
+                for (int j = 0; j < n; ++j) {
+                    const double p3 = p2;
+                    p2 = p1;
+                    p1 = ((2.0 * j + 1.0) * z * p2 - j * p3) / (j + 1);
+                }
+                pp = n * (z * p1 - p2) / (z * z - 1.0);
+                const double z1 = z;
+                z = z1 - p1 / pp;
+                if (std::abs(z - z1) < 1e-15) break;
+            }
+            // Map [-1, 1] → [0, 1].
+            x[i] = 0.5 * (1.0 - z);
+            x[n - 1 - i] = 0.5 * (1.0 + z);
+            w[i] = w[n - 1 - i] = 1.0 / ((1.0 - z * z) * pp * pp);
+        }
+    }
+};
+
+const GaussLegendre& gaussLegendre(int n) {
+    static std::mutex m;
+    static std::array<std::unique_ptr<GaussLegendre>, 257> cache;
+    if (n < 1 || n > 256) fail("Gauss-Legendre order must be in [1, 256], got ", n);
+    std::lock_guard<std::mutex> lock(m);
+    if (!cache[n]) cache[n] = std::make_unique<GaussLegendre>(n);
+    return *cache[n];
+}
+
+/// tan²θh of the microfacet normal at CDF value u of D(m) cosθm (thesis eq. 2.19 for Beckmann;
+/// Walter et al. 2007 eq. 35 for GGX) and the inverse.
+double tan2FromCdf(MicrofacetType t, double alpha, double u) {
+    if (t == MicrofacetType::Beckmann) return -alpha * alpha * std::log1p(-u);
+    return alpha * alpha * u / (1.0 - u);
+}
+double cdfFromTan2(MicrofacetType t, double alpha, double tan2) {
+    if (t == MicrofacetType::Beckmann) return -std::expm1(-tan2 / (alpha * alpha));
+    return tan2 / (alpha * alpha + tan2);
+}
+
+/// Smooth-interface transmittance 1 − F(μ) (the α → 0 limit).
+double smoothTransmittance(double eta, double mu) { return 1.0 - fresnelDielectric(float(mu), float(eta)); }
+
+}  // namespace
+
+double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha, double mu, int q) {
+    mu = std::clamp(mu, 1e-4, 1.0);  // μ = 0 is read as its limit (T is linear near grazing)
+    if (alpha <= 0) return smoothTransmittance(eta, mu);
+    const MicrofacetDistribution dist(type, float(alpha), float(alpha));
+    const double sinI = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    const vec3 wi(float(sinI), 0.0f, float(mu));
+    const double g1i = dist.smithG1(wi, vec3(0, 0, 1));
+    const GaussLegendre& gl = gaussLegendre(q);
+    // T = ∫ G1(i) (i·m)₊ D(m)/μ (1 − F(i·m)) G1(o, m) dωm, o = refract(i, m)  (Walter 2007 eqs.
+    // 21, 23 with the change of variables dωo → dωm); with m ~ D(m) cosθm (CDF u, φ):
+    // T = ∫du (1/π) ∫₀^φmax G1(i) (i·m)/(μ cosθm) (1 − F) G1(o) dφ.
+    // The visible range of φ is all of [0, π] while θm ≤ θ* = π/2 − θi, and |φ| ≤ φmax(θm) after:
+    // split the u-range at θ* so that each piece is smooth.
+    const double thetaStar = M_PI / 2 - std::acos(mu);
+    const double uStar = thetaStar >= M_PI / 2 ? 1.0 : cdfFromTan2(type, alpha, sqr(std::tan(thetaStar)));
+    double total = 0;
+    for (int piece = 0; piece < 2; ++piece) {
+        const double u0 = piece == 0 ? 0.0 : uStar, u1 = piece == 0 ? uStar : 1.0;
+        if (!(u1 > u0)) continue;
+        for (int a = 0; a < q; ++a) {
+            // u = u1 − (u1 − u0)(1 − w)²: removes the integrable tail singularity at u → 1.
+            const double w = gl.x[a];
+            const double u = u1 - (u1 - u0) * sqr(1.0 - w);
+            const double du = 2.0 * (u1 - u0) * (1.0 - w) * gl.w[a];
+            const double tan2 = tan2FromCdf(type, alpha, u);
+            if (!std::isfinite(tan2)) continue;
+            const double cosM = 1.0 / std::sqrt(1.0 + tan2), sinM = std::sqrt(tan2) * cosM;
+            double phiMax = M_PI;
+            if (piece == 1 && sinI > 0 && sinM > 0) phiMax = std::acos(std::clamp(-(mu * cosM) / (sinI * sinM), -1.0, 1.0));
+            double inner = 0;
+            for (int b = 0; b < q; ++b) {
+                const double phi = phiMax * gl.x[b];
+                const vec3 m(float(sinM * std::cos(phi)), float(sinM * std::sin(phi)), float(cosM));
+                const double im = sinI * sinM * std::cos(phi) + mu * cosM;
+                if (im <= 0) continue;
+                const FresnelDielectricResult fr = fresnelDielectricFull(float(im), float(eta));
+                if (fr.R >= 1.0f) continue;  // total internal reflection on this facet
+                const vec3 wo = refract(wi, m, fr.cosThetaT, fr.etaTI);
+                const double g1o = dist.smithG1(wo, m);
+                inner += gl.w[b] * im / (mu * cosM) * (1.0 - fr.R) * g1o;
+            }
+            total += du * inner * phiMax / M_PI;
+        }
+    }
+    return total * g1i;
+}
+
+double roughInternalDiffuseIntegral(MicrofacetType type, double eta, double alpha, int q, int qMu) {
+    const GaussLegendre& gl = gaussLegendre(qMu);
+    double s = 0;
+    for (int k = 0; k < qMu; ++k) s += gl.w[k] * gl.x[k] * roughTransmittanceIntegral(type, eta, alpha, gl.x[k], q);
+    return 2.0 * s / (eta * eta);
+}
+
+RoughTransmittanceTables buildRoughTables(MicrofacetType type, const RoughTableResolution& res) {
+    if (res.nEta < 2 || res.nAlpha < 2 || res.nMu < 2) fail("rough plastic tables need at least 2 nodes per axis");
+    RoughTransmittanceTables t;
+    t.type = type;
+    t.res = res;
+    t.ext.assign(size_t(res.nEta) * res.nAlpha * res.nMu, 0.0f);
+    t.diffuse.assign(size_t(res.nEta) * res.nAlpha, 0.0f);
+    const int lines = res.nEta * res.nAlpha;
+    tbb::parallel_for(0, lines, [&](int line) {
+        const int ie = line / res.nAlpha, ia = line % res.nAlpha;
+        const double eta = RoughTransmittanceTables::etaNode(ie, res.nEta);
+        const double alpha = RoughTransmittanceTables::alphaNode(ia, res.nAlpha);
+        for (int im = 0; im < res.nMu; ++im)
+            t.ext[size_t(line) * res.nMu + im] =
+                float(roughTransmittanceIntegral(type, eta, alpha, RoughTransmittanceTables::muNode(im, res.nMu), res.quadrature));
+        t.diffuse[line] = float(roughInternalDiffuseIntegral(type, eta, alpha, res.quadrature, res.quadrature));
+    });
+    return t;
+}
+
+// ---- Catmull-Rom interpolation (thesis eqs. 2.45–2.50) ----
+
+namespace {
+
+/// Up to four (index, weight) pairs of a cubic Catmull-Rom stencil at grid coordinate x ∈ [0, n−1].
+/// Ghost nodes beyond the ends are linear extrapolations (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}),
+/// folded into the weights.
+struct Stencil {
+    int idx[4];
+    float w[4];
+    int count = 0;
+    void add(int i, float wt) {
+        for (int k = 0; k < count; ++k)
+            if (idx[k] == i) {
+                w[k] += wt;
+                return;
+            }
+        idx[count] = i;
+        w[count++] = wt;
+    }
+};
+
+Stencil catmullRom(float x, int n) {
+    x = std::clamp(x, 0.0f, float(n - 1));
+    const int i = std::min(int(x), n - 2);
+    const float t = x - float(i), t2 = t * t, t3 = t2 * t;
+    const float wts[4] = {-0.5f * t + t2 - 0.5f * t3,          // eq. 2.46
+                          1.0f - 2.5f * t2 + 1.5f * t3,        // eq. 2.47
+                          0.5f * t + 2.0f * t2 - 1.5f * t3,    // eq. 2.48
+                          -0.5f * t2 + 0.5f * t3};             // eq. 2.49
+    Stencil s;
+    for (int k = 0; k < 4; ++k) {
+        const int j = i - 1 + k;
+        if (j < 0) {
+            s.add(0, 2.0f * wts[k]);
+            s.add(1, -wts[k]);
+        } else if (j > n - 1) {
+            s.add(n - 1, 2.0f * wts[k]);
+            s.add(n - 2, -wts[k]);
+        } else {
+            s.add(j, wts[k]);
+        }
+    }
+    return s;
+}
+
+float etaCoord(float eta, int n) {
+    using T = RoughTransmittanceTables;
+    return std::sqrt(std::clamp((eta - T::kEtaMin) / (T::kEtaMax - T::kEtaMin), 0.0f, 1.0f)) * float(n - 1);
+}
+float alphaCoord(float alpha, int n) {
+    return std::sqrt(std::clamp(alpha, 0.0f, RoughTransmittanceTables::kAlphaMax) / RoughTransmittanceTables::kAlphaMax) *
+           float(n - 1);
+}
+
+}  // namespace
+
+float RoughTransmittanceTables::transmittance(float eta, float alpha, float cosTheta) const {
+    const Stencil se = catmullRom(etaCoord(eta, res.nEta), res.nEta);
+    const Stencil sa = catmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
+    const Stencil sm = catmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
+    float v = 0;  // eq. 2.44
+    for (int i = 0; i < se.count; ++i)
+        for (int j = 0; j < sa.count; ++j) {
+            const float* line = &ext[(size_t(se.idx[i]) * res.nAlpha + sa.idx[j]) * res.nMu];
+            float lv = 0;
+            for (int k = 0; k < sm.count; ++k) lv += sm.w[k] * line[sm.idx[k]];
+            v += se.w[i] * sa.w[j] * lv;
+        }
+    return std::clamp(v, 0.0f, 1.0f);
+}
+
+float RoughTransmittanceTables::internalDiffuseTransmittance(float eta, float alpha) const {
+    const Stencil se = catmullRom(etaCoord(eta, res.nEta), res.nEta);
+    const Stencil sa = catmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
+    float v = 0;  // eq. 2.51
+    for (int i = 0; i < se.count; ++i)
+        for (int j = 0; j < sa.count; ++j) v += se.w[i] * sa.w[j] * diffuse[size_t(se.idx[i]) * res.nAlpha + sa.idx[j]];
+    return std::clamp(v, 0.0f, 1.0f);
+}
+
+// ---- Disk cache ----
+
+namespace {
+
+uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+struct Header {
+    char magic[8];
+    uint32_t version, type;
+    int32_t nEta, nAlpha, nMu, quadrature;
+    float etaMin, etaMax, alphaMax, pad;
+};
+
+const char* typeName(MicrofacetType t) { return t == MicrofacetType::Beckmann ? "beckmann" : "ggx"; }
+
+}  // namespace
+
+std::optional<RoughTransmittanceTables> readRoughTables(const std::string& path, MicrofacetType type,
+                                                        const RoughTableResolution& res, std::string* why) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        if (why) *why = "missing";
+        return std::nullopt;
+    }
+    Header h{};
+    in.read(reinterpret_cast<char*>(&h), sizeof(h));
+    if (!in || std::memcmp(h.magic, kMagic, 8) != 0 || h.version != kFormatVersion) {
+        if (why) *why = "bad header";
+        return std::nullopt;
+    }
+    using T = RoughTransmittanceTables;
+    if (h.type != uint32_t(type) || h.nEta != res.nEta || h.nAlpha != res.nAlpha || h.nMu != res.nMu ||
+        h.quadrature != res.quadrature || h.etaMin != T::kEtaMin || h.etaMax != T::kEtaMax || h.alphaMax != T::kAlphaMax) {
+        if (why) *why = "parameters do not match";
+        return std::nullopt;
+    }
+    RoughTransmittanceTables t;
+    t.type = type;
+    t.res = res;
+    t.ext.resize(size_t(res.nEta) * res.nAlpha * res.nMu);
+    t.diffuse.resize(size_t(res.nEta) * res.nAlpha);
+    uint64_t sum = 0;
+    in.read(reinterpret_cast<char*>(t.ext.data()), std::streamsize(t.ext.size() * sizeof(float)));
+    in.read(reinterpret_cast<char*>(t.diffuse.data()), std::streamsize(t.diffuse.size() * sizeof(float)));
+    in.read(reinterpret_cast<char*>(&sum), sizeof(sum));
+    if (!in || in.peek() != std::char_traits<char>::eof()) {
+        if (why) *why = "truncated or oversized";
+        return std::nullopt;
+    }
+    const uint64_t expect = fnv1a(t.diffuse.data(), t.diffuse.size() * sizeof(float),
+                                  fnv1a(t.ext.data(), t.ext.size() * sizeof(float)));
+    if (sum != expect) {
+        if (why) *why = "checksum mismatch";
+        return std::nullopt;
+    }
+    for (float v : t.ext)
+        if (!(v >= 0.0f && v <= 1.0f)) {
+            if (why) *why = "values out of range";
+            return std::nullopt;
+        }
+    return t;
+}
+
+bool writeRoughTables(const std::string& path, const RoughTransmittanceTables& t) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path p(path);
+    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
+    const std::string tmp = strCat(path, ".tmp", ::getpid(), "_", reinterpret_cast<uintptr_t>(&t));
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) return false;
+        Header h{};
+        std::memcpy(h.magic, kMagic, 8);
+        h.version = kFormatVersion;
+        h.type = uint32_t(t.type);
+        h.nEta = t.res.nEta;
+        h.nAlpha = t.res.nAlpha;
+        h.nMu = t.res.nMu;
+        h.quadrature = t.res.quadrature;
+        h.etaMin = RoughTransmittanceTables::kEtaMin;
+        h.etaMax = RoughTransmittanceTables::kEtaMax;
+        h.alphaMax = RoughTransmittanceTables::kAlphaMax;
+        const uint64_t sum = fnv1a(t.diffuse.data(), t.diffuse.size() * sizeof(float),
+                                   fnv1a(t.ext.data(), t.ext.size() * sizeof(float)));
+        out.write(reinterpret_cast<const char*>(&h), sizeof(h));
+        out.write(reinterpret_cast<const char*>(t.ext.data()), std::streamsize(t.ext.size() * sizeof(float)));
+        out.write(reinterpret_cast<const char*>(t.diffuse.data()), std::streamsize(t.diffuse.size() * sizeof(float)));
+        out.write(reinterpret_cast<const char*>(&sum), sizeof(sum));
+        if (!out) {
+            out.close();
+            fs::remove(tmp, ec);
+            return false;
+        }
+    }
+    fs::rename(tmp, p, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        return false;
+    }
+    return true;
+}
+
+RoughTransmittanceTables loadOrBuildRoughTables(const std::string& path, MicrofacetType type,
+                                                const RoughTableResolution& res) {
+    std::string why;
+    if (auto t = readRoughTables(path, type, res, &why)) return std::move(*t);
+    if (why != "missing")
+        std::cerr << "iris: warning: rough plastic table cache '" << path << "' is unusable (" << why
+                  << "); rebuilding it\n";
+    RoughTransmittanceTables t = buildRoughTables(type, res);
+    if (!writeRoughTables(path, t))
+        std::cerr << "iris: warning: could not write the rough plastic table cache '" << path << "'\n";
+    return t;
+}
+
+std::string roughTablesCacheDir() {
+    if (const char* d = std::getenv("IRIS_CACHE_DIR"); d && *d) return d;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/iris";
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/iris";
+    return (std::filesystem::temp_directory_path() / "iris-cache").string();
+}
+
+std::string roughTablesCachePath(MicrofacetType type, const RoughTableResolution& res) {
+    return strCat(roughTablesCacheDir(), "/rough_plastic_", typeName(type), "_", res.nEta, "x", res.nAlpha, "x",
+                  res.nMu, "_q", res.quadrature, "_v", kFormatVersion, ".bin");
+}
+
+namespace {
+std::mutex gTablesMutex;
+std::array<std::unique_ptr<const RoughTransmittanceTables>, 2> gTables;
+std::array<std::atomic<int>, 2> gAcquired{};
+}  // namespace
+
+const RoughTransmittanceTables& roughPlasticTables(MicrofacetType type) {
+    const int k = type == MicrofacetType::Beckmann ? 0 : 1;
+    std::lock_guard<std::mutex> lock(gTablesMutex);
+    if (!gTables[k]) {
+        const RoughTableResolution res;
+        gTables[k] = std::make_unique<const RoughTransmittanceTables>(
+            loadOrBuildRoughTables(roughTablesCachePath(type, res), type, res));
+        ++gAcquired[k];
+    }
+    return *gTables[k];
+}
+
+int roughPlasticTablesAcquired(MicrofacetType type) {
+    return gAcquired[type == MicrofacetType::Beckmann ? 0 : 1].load();
+}
+
+}  // namespace iris

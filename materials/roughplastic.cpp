@@ -1,0 +1,123 @@
+// Rough plastic (Jakob; Mitsuba "roughplastic"; thesis 000 §2.5, eqs. 2.36–2.56): a rough
+// dielectric coat (Walter et al. 2007 microfacet reflection) over a Lambertian base, with the
+// coat's transmittances read from precomputed tables (materials/rough_plastic_tables.h).
+// Model and readings: materials/thesis_rough_coat.h and docs/thesis_models.md.
+//
+// Parameters (Mitsuba names):
+//   distribution          "beckmann" | "ggx"                       default beckmann
+//   alpha                 float | texture, roughness in [0, 1]     default 0.1
+//   int_ior, ext_ior      float, η = int_ior/ext_ior ∈ [1, 3]      default 1.49, 1.000277
+//   diffuse_reflectance   spectrum | texture (base albedo ρ)       default 0.5
+//   specular_reflectance  spectrum | texture (ks)                  default 1.0
+//   nonlinear             bool (ρ/(1−ρFdr) instead of ρ/(1−Fdr))   default false
+#include "core/registry.h"
+#include "materials/material.h"
+#include "materials/thesis_rough_coat.h"
+
+namespace iris {
+namespace {
+
+class RoughPlasticBSDF final : public BSDF {
+public:
+    RoughPlasticBSDF(const RoughTransmittanceTables* t, MicrofacetDistribution dist, float alpha, float eta,
+                     const SampledSpectrum& ks, const SampledSpectrum& rho, bool nonlinear)
+        : t_(t), dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho), rhoAvg_(rho.average()) {
+        const float fdr = 1.0f - t_->internalDiffuseTransmittance(eta_, alpha_);  // eq. 2.54
+        for (int c = 0; c < rho.size(); ++c) rhoEff_[c] = roughCoatAlbedo(rho[c], fdr, nonlinear);
+    }
+
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+        SampledSpectrum f(ks_.size());
+        if (wo.z <= 0 || wi.z <= 0) return f;
+        const float s = roughCoatSpecular(dist_, wo, wi, eta_);                  // eq. 2.36
+        const float d = roughCoatDiffuse(*t_, alpha_, eta_, wi.z, wo.z);         // eq. 2.55
+        for (int c = 0; c < f.size(); ++c) f[c] = ks_[c] * s + rhoEff_[c] * d;   // eq. 2.56
+        return f;
+    }
+
+    float specularProbability(const vec3& wo) const {
+        return roughCoatSpecularProbability(ks_.average(), rhoAvg_, t_->transmittance(eta_, alpha_, wo.z));
+    }
+
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z <= 0) return std::nullopt;
+        const float ps = specularProbability(wo);
+        BSDFSample s;
+        if (uc < ps) {
+            const vec3 m = dist_.sampleNormal(wo, u);
+            s.wi = reflect(wo, m);
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {
+            s.wi = sampleCosineHemisphere(u);
+            s.flags = kBSDFReflection | kBSDFDiffuse;
+        }
+        if (s.wi.z <= 0) return std::nullopt;
+        s.pdf = pdf(wo, s.wi, mode);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(wo, s.wi, mode);
+        return s;
+    }
+
+    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        const float ps = specularProbability(wo);
+        return ps * roughCoatSpecularPdf(dist_, wo, wi) + (1.0f - ps) * cosineHemispherePdf(wi.z);
+    }
+
+    uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
+
+private:
+    const RoughTransmittanceTables* t_;
+    MicrofacetDistribution dist_;
+    float alpha_, eta_;
+    SampledSpectrum ks_, rhoEff_;
+    float rhoAvg_;
+};
+
+class RoughPlasticMaterial final : public Material {
+public:
+    explicit RoughPlasticMaterial(const Properties& p) {
+        try {
+            type_ = MicrofacetDistribution::parseType(p.getString("distribution", "beckmann"));
+        } catch (const Error& e) {
+            failAt(p.locationOf("distribution"), "roughplastic: ", e.what());
+        }
+        alpha_ = p.getFloatTexture("alpha", 0.1f);
+        const float intIor = p.getFloat("int_ior", 1.49f), extIor = p.getFloat("ext_ior", 1.000277f);
+        if (!(intIor > 0) || !(extIor > 0)) failAt(p.location(), "roughplastic: int_ior and ext_ior must be positive");
+        eta_ = intIor / extIor;
+        if (eta_ < RoughTransmittanceTables::kEtaMin || eta_ > RoughTransmittanceTables::kEtaMax)
+            failAt(p.location(), "roughplastic: int_ior/ext_ior = ", eta_, " is outside the tabulated range [",
+                   RoughTransmittanceTables::kEtaMin, ", ", RoughTransmittanceTables::kEtaMax, "]");
+        if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
+            c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
+            failAt(p.locationOf("alpha"), "roughplastic: alpha must be in [0, 1], got ", c->value());
+        rho_ = p.getSpectrumTexture("diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
+        ks_ = p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f);
+        nonlinear_ = p.getBool("nonlinear", false);
+        tables_ = &roughPlasticTables(type_);  // first use builds or loads them
+    }
+
+    const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
+        return arena.make<RoughPlasticBSDF>(tables_, MicrofacetDistribution(type_, alpha, alpha), alpha, eta_,
+                                            clampZero(ks_->eval(sp.tex, wl)), clampZero(rho_->eval(sp.tex, wl)),
+                                            nonlinear_);
+    }
+
+private:
+    MicrofacetType type_;
+    FloatTexturePtr alpha_;
+    float eta_;
+    SpectrumTexturePtr rho_, ks_;
+    bool nonlinear_;
+    const RoughTransmittanceTables* tables_;
+};
+
+std::shared_ptr<Material> createRoughPlastic(const Properties& p) { return std::make_shared<RoughPlasticMaterial>(p); }
+
+}  // namespace
+
+IRIS_REGISTER(MaterialRegistry, "roughplastic", createRoughPlastic);
+
+}  // namespace iris

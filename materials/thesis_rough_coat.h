@@ -1,0 +1,61 @@
+// The pieces of the rough plastic model (Jakob; thesis 000 §2.5) shared by `roughplastic` and
+// the thesis' proposed model (§3.2), written as scalar functions of one relative index η so that
+// both materials perform exactly the same floating-point operations per channel.
+//
+// Model (derived in docs/thesis_models.md): a rough dielectric coat (relative index η, roughness
+// α) over a Lambertian base of albedo ρ. In our convention (eval without the cosine):
+//   f(wo, wi) = ks · F(wo·h, η) D(h) G(wo, wi, h) / (4 μi μo)                 (eqs. 2.36, 3.15)
+//             + ρ' · T(η, α, μi) T(η, α, μo) / (π η²)                        (eqs. 2.55, 3.16)
+//   ρ' = ρ / (1 − Fdr)       (linear, the thesis' eq. 2.55 with its "Rd" = Fdr, Mitsuba default)
+//   ρ' = ρ / (1 − ρ Fdr)     (nonlinear: the geometric series of internal bounces)
+//   Fdr = 1 − Td(η, α): internal diffuse reflectance of the coat (eq. 2.54 / 3.19).
+#pragma once
+
+#include "core/sampling.h"
+#include "materials/fresnel.h"
+#include "materials/microfacet.h"
+#include "materials/rough_plastic_tables.h"
+
+namespace iris {
+
+/// Specular microfacet reflection of the coat without weight: F D G / (4 μi μo)  (eq. 2.6/2.36).
+inline float roughCoatSpecular(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi, float eta) {
+    if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+    vec3 h = wo + wi;
+    const float len = glm::length(h);
+    if (!(len > 0)) return 0.0f;
+    h /= len;
+    const float F = fresnelDielectric(glm::dot(wo, h), eta);
+    return F * dist.D(h) * dist.G(wi, wo, h) / (4.0f * wi.z * wo.z);
+}
+
+/// Diffuse path through the coat without the base albedo: T12 T21 / (π η²)  (eq. 2.55).
+inline float roughCoatDiffuse(const RoughTransmittanceTables& t, float alpha, float eta, float cosI, float cosO) {
+    return t.transmittance(eta, alpha, cosI) * t.transmittance(eta, alpha, cosO) * kInvPi / (eta * eta);
+}
+
+/// Effective base albedo ρ' (linear: ρ/(1 − Fdr); nonlinear: ρ/(1 − ρ Fdr)).
+inline float roughCoatAlbedo(float rho, float fdr, bool nonlinear) {
+    return nonlinear ? rho / (1.0f - rho * fdr) : rho / (1.0f - fdr);
+}
+
+/// Probability of sampling the specular lobe given wo: the share of the (average) specular
+/// weight times the coat's reflectance 1 − T12(μo) against the (average) diffuse weight times T12.
+inline float roughCoatSpecularProbability(float ksAvg, float rhoAvg, float t12Avg) {
+    const float a = ksAvg * (1.0f - t12Avg), b = rhoAvg * t12Avg;
+    if (!(a + b > 0)) return ksAvg > 0 ? 1.0f : 0.0f;
+    return std::clamp(a / (a + b), 0.0f, 1.0f);
+}
+
+/// Density of reflecting wo about a visible-normal sample: D_wo(h) / (4 |wo·h|).
+inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi) {
+    vec3 h = wo + wi;
+    const float len = glm::length(h);
+    if (!(len > 0)) return 0.0f;
+    h /= len;
+    const float woh = glm::dot(wo, h);
+    if (woh <= 0) return 0.0f;
+    return dist.pdf(wo, h) / (4.0f * woh);
+}
+
+}  // namespace iris

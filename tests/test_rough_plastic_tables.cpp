@@ -1,0 +1,173 @@
+// Rough dielectric transmittance tables: brute-force integrals (limits, reciprocity), Catmull-Rom
+// interpolation error against brute force on random points, disk cache (round trip, corrupt
+// files rebuilt), and laziness (only rough-plastic-type materials acquire the tables).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "core/rng.h"
+#include "materials/fresnel.h"
+#include "materials/rough_plastic_tables.h"
+#include "tests/bsdf_test_util.h"
+
+using namespace iris;
+using namespace iris::test;
+
+namespace {
+
+std::string tempDir(const std::string& name) {
+    const auto d = std::filesystem::temp_directory_path() / ("iris_test_" + name + "_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d.string();
+}
+
+RoughTableResolution tinyRes() {
+    RoughTableResolution r;
+    r.nEta = 4;
+    r.nAlpha = 5;
+    r.nMu = 6;
+    r.quadrature = 8;
+    return r;
+}
+
+}  // namespace
+
+TEST(RoughPlasticTables, BruteForceLimits) {
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+        for (double mu : {0.1, 0.5, 1.0}) {
+            // α = 0 is the smooth interface; a tiny α is close to it away from grazing.
+            const double smooth = 1.0 - fresnelDielectric(float(mu), 1.5f);
+            EXPECT_NEAR(roughTransmittanceIntegral(type, 1.5, 0.0, mu), smooth, 1e-7);
+            EXPECT_NEAR(roughTransmittanceIntegral(type, 1.5, 0.002, mu), smooth, 1e-3);
+            // Index-matched interface: no Fresnel reflection, only masking removes light (the
+            // straight-through exit direction is masked more at grazing than a refracted one).
+            const double t1 = roughTransmittanceIntegral(type, 1.0, 0.5, mu, 32);
+            EXPECT_GT(t1, 0.0);
+            EXPECT_LE(t1, 1.0);
+            if (mu == 1.0) EXPECT_GT(t1, 0.85);
+            // Rougher interfaces and larger η transmit less at normal incidence.
+            if (mu == 1.0) {
+                EXPECT_GT(roughTransmittanceIntegral(type, 1.5, 0.1, mu), roughTransmittanceIntegral(type, 1.5, 0.8, mu));
+                EXPECT_GT(roughTransmittanceIntegral(type, 1.3, 0.3, mu), roughTransmittanceIntegral(type, 2.0, 0.3, mu));
+            }
+        }
+    }
+}
+
+TEST(RoughPlasticTables, InternalDiffuseTransmittanceIsReciprocal) {
+    // Td from inside computed directly (η → 1/η, with total internal reflection) equals the
+    // reciprocity form (1/η²)·(outside hemispherical transmittance) used for the tables.
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+        for (double alpha : {0.05, 0.3, 0.8}) {
+            const double eta = 1.6;
+            const double viaOutside = roughInternalDiffuseIntegral(type, eta, alpha, 32, 48);
+            // roughInternalDiffuseIntegral(1/η) = η² · 2∫T_in μ dμ, so the inside hemispherical
+            // transmittance 2∫T_in μ dμ is that value divided by η².
+            const double tIn = roughInternalDiffuseIntegral(type, 1.0 / eta, alpha, 64, 96) / (eta * eta);
+            EXPECT_NEAR(tIn, viaOutside, 2e-3) << "alpha " << alpha;
+        }
+    }
+    // Smooth interface: the classical internal diffuse reflectance for η = 1.5 (≈ 0.596).
+    const double fdr = 1.0 - roughInternalDiffuseIntegral(MicrofacetType::Beckmann, 1.5, 0.0, 1, 256);
+    EXPECT_NEAR(fdr, 0.596, 0.002);
+}
+
+TEST(RoughPlasticTables, InterpolationErrorAgainstBruteForce) {
+    // Random points over the whole domain (η ∈ [1, 3], α ∈ [0, 1] with density ∝ 1/sqrt(α),
+    // μ ∈ [0, 1]); reference: brute force with 32-point quadrature.
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+        const RoughTransmittanceTables& t = roughPlasticTables(type);
+        Pcg32 rng(21, 3);
+        double maxAll = 0, maxAway = 0, maxTd = 0;
+        for (int i = 0; i < 1500; ++i) {
+            const float eta = 1.0f + 2.0f * rng.uniform(), a = sqr(rng.uniform()), mu = rng.uniform();
+            const double e = std::abs(t.transmittance(eta, a, mu) - roughTransmittanceIntegral(type, eta, a, mu, 32));
+            maxAll = std::max(maxAll, e);
+            if (mu > 0.1f || a > 0.1f) maxAway = std::max(maxAway, e);
+            if (i < 100)
+                maxTd = std::max(maxTd, std::abs(t.internalDiffuseTransmittance(eta, a) -
+                                                 roughInternalDiffuseIntegral(type, eta, a, 32, 48)));
+        }
+        std::printf("[tables] %s: max |T error| %.2e (all), %.2e (mu > 0.1 or alpha > 0.1); max |Td error| %.2e\n",
+                    type == MicrofacetType::Beckmann ? "beckmann" : "ggx", maxAll, maxAway, maxTd);
+        EXPECT_LT(maxAll, 0.03);
+        EXPECT_LT(maxAway, 3e-3);
+        EXPECT_LT(maxTd, 5e-4);
+        // Grid nodes reproduce the stored values.
+        const auto& r = t.res;
+        for (int ie : {0, r.nEta / 2, r.nEta - 1})
+            for (int ia : {0, 3, r.nAlpha - 1})
+                for (int im : {0, r.nMu / 3, r.nMu - 1}) {
+                    const float v = t.ext[(size_t(ie) * r.nAlpha + ia) * r.nMu + im];
+                    EXPECT_NEAR(t.transmittance(RoughTransmittanceTables::etaNode(ie, r.nEta),
+                                                RoughTransmittanceTables::alphaNode(ia, r.nAlpha),
+                                                RoughTransmittanceTables::muNode(im, r.nMu)),
+                                v, 2e-6);
+                }
+    }
+}
+
+TEST(RoughPlasticTables, CacheRoundTripAndCorruptFilesAreRebuilt) {
+    const std::string dir = tempDir("cache");
+    const std::string path = dir + "/t.bin";
+    const RoughTableResolution res = tinyRes();
+    const RoughTransmittanceTables fresh = buildRoughTables(MicrofacetType::GGX, res);
+    ASSERT_TRUE(writeRoughTables(path, fresh));
+    std::string why;
+    auto back = readRoughTables(path, MicrofacetType::GGX, res, &why);
+    ASSERT_TRUE(back.has_value()) << why;
+    EXPECT_EQ(back->ext, fresh.ext);
+    EXPECT_EQ(back->diffuse, fresh.diffuse);
+    // Wrong distribution or resolution: not accepted.
+    EXPECT_FALSE(readRoughTables(path, MicrofacetType::Beckmann, res, &why).has_value());
+    RoughTableResolution other = res;
+    other.nMu = 7;
+    EXPECT_FALSE(readRoughTables(path, MicrofacetType::GGX, other, &why).has_value());
+
+    // Flip one byte in the data: checksum mismatch → warning and rebuild, never a crash.
+    {
+        std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(60);
+        f.put(char(0x5a));
+    }
+    EXPECT_FALSE(readRoughTables(path, MicrofacetType::GGX, res, &why).has_value());
+    RoughTransmittanceTables rebuilt = loadOrBuildRoughTables(path, MicrofacetType::GGX, res);
+    EXPECT_EQ(rebuilt.ext, fresh.ext);
+    ASSERT_TRUE(readRoughTables(path, MicrofacetType::GGX, res, &why).has_value()) << why;  // rewritten
+
+    // Truncated and garbage files.
+    std::filesystem::resize_file(path, 100);
+    EXPECT_EQ(loadOrBuildRoughTables(path, MicrofacetType::GGX, res).diffuse, fresh.diffuse);
+    { std::ofstream(path, std::ios::binary | std::ios::trunc) << "not a table"; }
+    EXPECT_EQ(loadOrBuildRoughTables(path, MicrofacetType::GGX, res).ext, fresh.ext);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(RoughPlasticTables, CachePathKeyedByParameters) {
+    RoughTableResolution a, b;
+    b.nMu += 1;
+    EXPECT_NE(roughTablesCachePath(MicrofacetType::Beckmann, a), roughTablesCachePath(MicrofacetType::GGX, a));
+    EXPECT_NE(roughTablesCachePath(MicrofacetType::Beckmann, a), roughTablesCachePath(MicrofacetType::Beckmann, b));
+}
+
+TEST(RoughPlasticTables, OnlyRoughPlasticMaterialsAcquireTables) {
+    const int b0 = roughPlasticTablesAcquired(MicrofacetType::Beckmann);
+    const int g0 = roughPlasticTablesAcquired(MicrofacetType::GGX);
+    // Other materials (including smooth plastic and Granier) never touch the tables.
+    for (const char* type : {"diffuse", "plastic", "granier"}) {
+        auto inst = makeBSDF(type, {});
+        ASSERT_NE(inst.bsdf, nullptr);
+        inst.bsdf->eval(vec3(0, 0, 1), vec3(0, 0, 1), TransportMode::Radiance);
+    }
+    EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::Beckmann), b0);
+    EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::GGX), g0);
+    // A GGX rough plastic acquires the GGX tables at most once per process, never Beckmann's.
+    makeBSDF("roughplastic", {{"distribution", std::string("ggx")}});
+    makeBSDF("roughplastic", {{"distribution", std::string("ggx")}, {"alpha", 0.3f}});
+    EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::GGX), 1);
+    EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::Beckmann), b0);
+}
