@@ -109,6 +109,14 @@ int levenbergMarquardt(const Model& m, const dvec3& target, double c[3], double 
     return it;
 }
 
+bool converged(const Model& m, const dvec3& target, const double c[3], double tol) {
+    dvec3 rgb;
+    double J[3][3];
+    m.eval(c, rgb, J);
+    const dvec3 d = glm::abs(rgb - target);
+    return std::max({d.x, d.y, d.z}) <= tol;
+}
+
 }  // namespace
 
 SigmoidFit fitSigmoidPolynomial(const vec3& rgbIn) {
@@ -120,12 +128,19 @@ SigmoidFit fitSigmoidPolynomial(const vec3& rgbIn) {
     const double grey = std::clamp((target.x + target.y + target.z) / 3.0, 1e-3, 1.0 - 1e-3);
     // Start: the grey level g has s = const = g, i.e. x = S⁻¹(g) = (2g − 1) / (2√(g(1 − g))).
     c[2] = (2.0 * grey - 1.0) / (2.0 * std::sqrt(grey * (1.0 - grey)));
-    const int stages = 8;
-    int iterations = 0;
-    for (int k = 1; k <= stages; ++k) {
-        const double a = double(k) / stages;
-        const dvec3 t = (1.0 - a) * dvec3(grey) + a * target;
-        iterations += levenbergMarquardt(model, t, c, k == stages ? 1e-9 : 1e-4, k == stages ? 300 : 50);
+    const double c2Grey = c[2];
+    // First try the target directly; if that stalls (strongly saturated colours), restart with a
+    // continuation in 8 stages from the grey, each warm-starting the next.
+    int iterations = levenbergMarquardt(model, target, c, 1e-9, 60);
+    if (!converged(model, target, c, 1e-6)) {
+        c[0] = c[1] = 0.0;
+        c[2] = c2Grey;
+        const int stages = 8;
+        for (int k = 1; k <= stages; ++k) {
+            const double a = double(k) / stages;
+            const dvec3 t = (1.0 - a) * dvec3(grey) + a * target;
+            iterations += levenbergMarquardt(model, t, c, k == stages ? 1e-9 : 1e-4, k == stages ? 300 : 50);
+        }
     }
     SigmoidFit fit;
     fit.poly = SigmoidPolynomial{float(c[0]), float(c[1]), float(c[2])};

@@ -2,12 +2,14 @@
 // greys as exact constants, and the bit-exact RGB mode.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 
 #include "core/error.h"
 #include "core/rng.h"
 #include "spectral/color_space.h"
 #include "spectral/rgb_spectrum.h"
+#include "spectral/rgb_spectrum_grid.h"
 #include "spectral/spectrum_factory.h"
 
 using namespace iris;
@@ -160,4 +162,51 @@ TEST(RgbUpsampling, SpectralSampleMatchesEval) {
 
 TEST(RgbUpsampling, NonFiniteInputIsAnError) {
     EXPECT_THROW(makeRGBSpectrum(vec3(NAN, 0.5f, 0.5f), SpectrumKind::Reflectance), Error);
+}
+
+TEST(RgbUpsampling, LazyGridForTexturesReproducesRgb) {
+    const bool builtBefore = RGBSpectrumGrid::built();
+    const auto t0 = std::chrono::steady_clock::now();
+    const RGBSpectrumGrid& grid = RGBSpectrumGrid::instance();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_TRUE(RGBSpectrumGrid::built());
+    if (!builtBefore) std::printf("[ measured ] RGBSpectrumGrid build (%d^3 fits): %.3f s\n", RGBSpectrumGrid::kResolution, seconds);
+    Pcg32 rng(77, 1);
+    float worst = 0;
+    for (int k = 0; k < 300; ++k) {
+        const vec3 rgb(rng.uniform(), rng.uniform(), rng.uniform());
+        const vec3 back = rgbProjection([&](float l) { return grid.reflectance(rgb, l); }, SpectrumKind::Reflectance);
+        const float err = maxAbsDiff(back, rgb);
+        EXPECT_LT(err, 1e-3f) << rgb.x << " " << rgb.y << " " << rgb.z;
+        worst = std::max(worst, err);
+        for (int l = 360; l <= 830; l += 10) {
+            const float v = grid.reflectance(rgb, float(l));
+            ASSERT_GE(v, 0.0f);
+            ASSERT_LE(v, 1.0f + 1e-6f);
+        }
+    }
+    std::printf("[ measured ] worst grid round-trip error over 300 random colours in [0,1]^3: %.3g\n", worst);
+    // At a node the grid is that node's own fitted spectrum.
+    const vec3 node(4.0f / 16, 8.0f / 16, 12.0f / 16);
+    const RGBSpectrum direct(node, SpectrumKind::Reflectance);
+    for (int l = 360; l <= 830; l += 10) EXPECT_NEAR(grid.reflectance(node, float(l)), direct.eval(float(l)), 1e-6f);
+    // Sampled forms: spectral = per-wavelength values, RGB mode = the triple, every kind.
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.61f, 8);
+    const vec3 c(0.3f, 0.6f, 0.2f);
+    const SampledSpectrum s = grid.sample(c, SpectrumKind::Reflectance, wl);
+    for (int i = 0; i < 8; ++i) EXPECT_FLOAT_EQ(s[i], grid.reflectance(c, wl.lambda(i)));
+    const SampledSpectrum u = grid.sample(2.0f * c, SpectrumKind::Unbounded, wl);
+    const SampledSpectrum uRef = grid.reflectance(c / 0.6f, wl) * 1.2f;
+    for (int i = 0; i < 8; ++i) EXPECT_NEAR(u[i], uRef[i], 1e-5f);
+    const SampledWavelengths rgbWl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    for (SpectrumKind kind : {SpectrumKind::Reflectance, SpectrumKind::Unbounded, SpectrumKind::Illuminant}) {
+        const SampledSpectrum r = grid.sample(vec3(0.1f, 2.0f, 0.3f), kind, rgbWl);
+        EXPECT_EQ(r[0], 0.1f);
+        EXPECT_EQ(r[1], 2.0f);
+        EXPECT_EQ(r[2], 0.3f);
+    }
+    // Illuminant white: exactly D65 with Y = 1, like makeRGBSpectrum.
+    const SpectrumPtr d65 = makeD65Spectrum();
+    const SampledSpectrum w = grid.sample(vec3(1.0f), SpectrumKind::Illuminant, wl);
+    for (int i = 0; i < 8; ++i) EXPECT_NEAR(w[i], d65->eval(wl.lambda(i)), 1e-6f * d65->maxValue());
 }

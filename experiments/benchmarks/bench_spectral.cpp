@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "spectral/rgb_spectrum.h"
+#include "spectral/rgb_spectrum_grid.h"
 #include "spectral/spectrum_factory.h"
 #include "spectral/xyz.h"
 
@@ -37,5 +38,17 @@ static void BM_ToXYZ(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(toXYZ(L, wl));
 }
 BENCHMARK(BM_ToXYZ)->Arg(4)->Arg(8)->Arg(16);
+
+static void BM_GridReflectanceSample(benchmark::State& state) {
+    const RGBSpectrumGrid& grid = RGBSpectrumGrid::instance();  // built outside the timed loop
+    const int n = int(state.range(0));
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.3f, n);
+    Pcg32 rng(3, 4);
+    for (auto _ : state) {
+        const vec3 rgb(rng.uniform(), rng.uniform(), rng.uniform());
+        benchmark::DoNotOptimize(grid.reflectance(rgb, wl));
+    }
+}
+BENCHMARK(BM_GridReflectanceSample)->Arg(4)->Arg(8)->Arg(16);
 
 BENCHMARK_MAIN();
