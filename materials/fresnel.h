@@ -79,6 +79,7 @@ inline float fresnelConductor(float cosThetaI, float eta, float k) {
     using C = std::complex<double>;  // double: the κ² terms cancel badly in float near grazing
     const double ci = std::clamp(double(cosThetaI), 0.0, 1.0);
     const C n(eta, k);
+    if (std::norm(n) == 0.0) return 1.0f;  // |η + iκ| → 0 limit (gaps in measured data read as 0)
     const double sin2I = 1.0 - ci * ci;
     const C sin2T = sin2I / (n * n);
     const C ct = std::sqrt(C(1.0) - sin2T);

@@ -74,30 +74,40 @@ Chi2Result chi2Test(const BSDF& bsdf, const vec3& wo, const Chi2Options& opt) {
     const int T = opt.thetaBins, P = opt.phiBins, cells = T * P;
     const double dTheta = M_PI / T, dPhi = 2.0 * M_PI / P;
 
-    // Expected probabilities: composite Simpson over each cell of pdf(θ, φ) sinθ.
-    const int n = opt.simpsonPoints;
-    std::vector<double> w(n + 1);
-    for (int j = 0; j <= n; ++j) w[j] = (j == 0 || j == n) ? 1.0 : (j % 2 ? 4.0 : 2.0);
+    // Expected probabilities: composite Simpson over each cell of pdf(θ, φ) sinθ, refined per
+    // cell (doubling the points per dimension, from opt.simpsonPoints up to 512) until the
+    // change is negligible against the cell's Poisson noise, so narrow lobes are resolved.
+    auto simpson = [&](int it, int ip, int n) {
+        double acc = 0;
+        for (int a = 0; a <= n; ++a) {
+            const double wa = (a == 0 || a == n) ? 1.0 : (a % 2 ? 4.0 : 2.0);
+            // Nudge the cell's edges inwards so a pdf discontinuous at a cell boundary (the
+            // horizon) is integrated with its one-sided limit.
+            const double th = (it + std::clamp(double(a) / n, 1e-6, 1.0 - 1e-6)) * dTheta;
+            const double st = std::sin(th), ct = std::cos(th);
+            for (int b = 0; b <= n; ++b) {
+                const double wb = (b == 0 || b == n) ? 1.0 : (b % 2 ? 4.0 : 2.0);
+                const double ph = (ip + std::clamp(double(b) / n, 1e-6, 1.0 - 1e-6)) * dPhi;
+                const vec3 wi(float(st * std::cos(ph)), float(st * std::sin(ph)), float(ct));
+                const float pd = bsdf.pdf(wo, wi, opt.mode);
+                if (std::isfinite(pd) && pd > 0) acc += wa * wb * pd * st;
+            }
+        }
+        return acc * (dTheta / (3.0 * n)) * (dPhi / (3.0 * n));
+    };
     std::vector<double> expected(cells + 1, 0.0);
     double mass = 0;
     for (int it = 0; it < T; ++it) {
         for (int ip = 0; ip < P; ++ip) {
-            double acc = 0;
-            for (int a = 0; a <= n; ++a) {
-                // Nudge the cell's edges inwards so a pdf discontinuous at a cell boundary (the
-                // horizon) is integrated with its one-sided limit.
-                const double fa = std::clamp(double(a) / n, 1e-6, 1.0 - 1e-6);
-                const double th = (it + fa) * dTheta;
-                const double st = std::sin(th), ct = std::cos(th);
-                if (st <= 0) continue;
-                for (int b = 0; b <= n; ++b) {
-                    const double ph = (ip + std::clamp(double(b) / n, 1e-6, 1.0 - 1e-6)) * dPhi;
-                    const vec3 wi(float(st * std::cos(ph)), float(st * std::sin(ph)), float(ct));
-                    const float pd = bsdf.pdf(wo, wi, opt.mode);
-                    if (std::isfinite(pd) && pd > 0) acc += w[a] * w[b] * pd * st;
-                }
+            int n = std::max(2, opt.simpsonPoints & ~1);
+            double p = simpson(it, ip, n);
+            while (n < 512) {
+                const double p2 = simpson(it, ip, 2 * n);
+                const double change = std::abs(p2 - p) * opt.samples;
+                p = p2;
+                n *= 2;
+                if (change < 0.02 * std::sqrt(std::max(1.0, p * opt.samples))) break;
             }
-            const double p = acc * (dTheta / (3.0 * n)) * (dPhi / (3.0 * n));
             expected[it * P + ip] = p;
             mass += p;
         }

@@ -61,7 +61,7 @@ struct Chi2Options {
     int thetaBins = 20;       // over [0, π]; keep even so the horizon is a cell boundary
     int phiBins = 40;         // over [0, 2π)
     int samples = 500000;
-    int simpsonPoints = 16;   // per cell and dimension (even)
+    int simpsonPoints = 8;    // initial points per cell and dimension (even); refined adaptively
     uint64_t seed = 1;
     double significance = 0.01;
     int numTests = 1;         // for the Šidák correction
