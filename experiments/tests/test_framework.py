@@ -1,0 +1,300 @@
+"""Tests of the experiment framework (run by ctest through tests/test_experiments_scripts.cpp, or
+directly: IRIS_BUILD_DIR=build python3 -m unittest discover -s experiments/tests).
+
+Uses a fake renderer (fake_render.py) and the real compare / merge tools from $IRIS_BUILD_DIR."""
+import csv
+import io
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+from contextlib import redirect_stderr, redirect_stdout
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+
+from iris_experiments import collect, exr, report, runner, scenes, slurm  # noqa: E402
+from iris_experiments.errors import ExperimentError  # noqa: E402
+from iris_experiments.experiment import run  # noqa: E402
+from iris_experiments.sweep import Sweep, expand  # noqa: E402
+from iris_experiments.tools import REPO  # noqa: E402
+
+BUILD = Path(os.environ.get("IRIS_BUILD_DIR", REPO / "build")).resolve()
+HAVE_TOOLS = (BUILD / "compare").exists() and (BUILD / "merge").exists()
+
+SCENE_XML = """<?xml version="1.0"?>
+<scene version="3.0.0">
+    <default name="res" value="16"/>
+    <default name="thickness" value="76"/>
+    <default name="offset" value="0"/>
+    <bsdf type="diffuse"/>
+</scene>
+"""
+
+
+class TempDirTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="iris_exp_test_"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def fake_build(self):
+        """A build folder with the fake render and links to the real compare / merge."""
+        bdir = self.tmp / "build"
+        bdir.mkdir()
+        render = bdir / "render"
+        render.write_text(f"#!/bin/sh\nexec {sys.executable} {HERE / 'fake_render.py'} \"$@\"\n")
+        render.chmod(0o755)
+        for tool in ("compare", "merge"):
+            if (BUILD / tool).exists():
+                (bdir / tool).symlink_to(BUILD / tool)
+        return bdir
+
+    def scene(self, text=SCENE_XML, name="scene.xml"):
+        path = self.tmp / name
+        path.write_text(text)
+        return path
+
+
+class SweepTest(TempDirTest):
+    def test_paths_are_deterministic_and_commands_complete(self):
+        s = Sweep("spectral", {"tf": "scenes/a.xml", "other": "scenes/b.xml"},
+                  axes={"spectral_samples": [1, 4], "thickness": [76, 200.5]},
+                  fixed={"mode": "spectral", "spp": 8, "seed": 3}, per_scene={"tf": {"res": 32}})
+        jobs = s.jobs(self.tmp, Path("/x/render"))
+        again = s.jobs(self.tmp, Path("/x/render"))
+        self.assertEqual([j.output for j in jobs], [j.output for j in again])
+        self.assertEqual(len(jobs), 8)
+        self.assertEqual([j.index for j in jobs], list(range(8)))
+        self.assertEqual(jobs[1].output, self.tmp / "renders/spectral/tf/spectral_samples=1_thickness=200.5.exr")
+        self.assertEqual(jobs[0].command,
+                         ["/x/render", "scenes/a.xml", "-o", str(jobs[0].output), "--mode", "spectral", "--spp", "8",
+                          "--seed", "3", "-D", "res=32", "--spectral-samples", "1", "-D", "thickness=76", "--quiet"])
+        self.assertNotIn("res=32", jobs[4].command)  # per-scene setting only for "tf"
+        self.assertEqual(jobs[4].label, "other")
+
+    def test_tuples_linked_values_and_duplicates(self):
+        s = Sweep("w", {"a": "s.xml"}, axes={"wavelengths": [(680, 520, 400)]}, fixed={"mode": "rgb"},
+                  linked={"wavelengths": "rgb_wavelengths"})
+        (job,) = s.jobs(self.tmp, Path("render"))
+        self.assertEqual(job.output.name, "wavelengths=680_520_400.exr")
+        self.assertIn("wavelengths=680,520,400", job.command)
+        self.assertEqual(job.command[job.command.index("--rgb-wavelengths") + 1], "680,520,400")
+        with self.assertRaises(ValueError):
+            expand([s, s], self.tmp, Path("render"))
+        two = expand([s, Sweep("v", {"a": "s.xml"}, axes={"seed": [1, 2]})], self.tmp, Path("render"))
+        self.assertEqual([j.index for j in two], [0, 1, 2])
+
+
+class SlurmTest(TempDirTest):
+    def test_script_has_one_array_task_per_job_running_its_command(self):
+        bdir = self.fake_build()
+        scene = self.scene()
+        s = Sweep("seeds", {"tf": str(scene)}, axes={"seed": [1, 2, 3]}, fixed={"spp": 2})
+        jobs = expand([s], self.tmp / "out", bdir / "render")
+        path = slurm.write_slurm_script(self.tmp / "run.sh", jobs, job_name="iris-test", time="00:10:00",
+                                        cpus_per_task=4, partition="short")
+        text = path.read_text()
+        self.assertIn("#SBATCH --array=0-2\n", text)
+        self.assertIn("#SBATCH --cpus-per-task=4\n", text)
+        self.assertIn("#SBATCH --partition=short\n", text)
+        self.assertIn("#SBATCH --time=00:10:00\n", text)
+        positions = [text.index(j.output.name) for j in jobs]
+        self.assertEqual(positions, sorted(positions))  # task i is job i
+        self.assertEqual(subprocess.run(["bash", "-n", str(path)]).returncode, 0)
+        # Run task 1 as Slurm would: it must render exactly job 1.
+        env = dict(os.environ, SLURM_ARRAY_TASK_ID="1")
+        proc = subprocess.run(["bash", str(path)], env=env, capture_output=True, text=True)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertTrue(jobs[1].output.exists())
+        self.assertFalse(jobs[0].output.exists())
+        self.assertEqual(exr.read_exr_metadata(str(jobs[1].output))["iris.seed"], "2")
+
+
+class WritersTest(TempDirTest):
+    def test_csv_and_json(self):
+        rows = [{"a": 1, "b": 0.5}, {"a": 2, "c": "x,y", "b": math.inf}]
+        collect.write_csv(rows, self.tmp / "r.csv")
+        back = collect.read_csv(self.tmp / "r.csv")
+        self.assertEqual(list(back[0].keys()), ["a", "b", "c"])
+        self.assertEqual(back[1], {"a": "2", "b": "inf", "c": "x,y"})
+        collect.write_json({"rows": rows}, self.tmp / "r.json")
+        data = json.loads((self.tmp / "r.json").read_text())
+        self.assertIsNone(data["rows"][1]["b"])
+        self.assertEqual(data["rows"][0]["b"], 0.5)
+
+    def test_markdown_report(self):
+        machine = report.machine_info()
+        self.assertEqual(machine["nproc"], os.cpu_count())
+        self.assertTrue(machine["cpu"])
+        path = report.write_report(self.tmp / "report.md", title="T", question="Q?", machine=machine,
+                                   settings={"spp": 4}, conclusions=["relMSE halves"],
+                                   sections=[("Results", report.markdown_table([{"x": 1.23456789, "y": "a|b"}], ["x", "y"]))],
+                                   figures=["fig.png"])
+        text = path.read_text()
+        for expected in ("# T", "Q?", f"- nproc: {os.cpu_count()}", "- spp: 4", "- relMSE halves", "| 1.235 | a\\|b |",
+                         "![fig](fig.png)", machine["uname"]):
+            self.assertIn(expected, text)
+
+
+class ExrTest(TempDirTest):
+    def test_round_trip_and_metadata(self):
+        img = np.random.default_rng(3).normal(size=(5, 7, 3)).astype(np.float32)
+        exr.write_exr(str(self.tmp / "a.exr"), img, metadata={"iris.spp": 16})
+        pixels, names, meta = exr.read_exr(str(self.tmp / "a.exr"))
+        np.testing.assert_array_equal(exr.rgb_of(pixels, names), img)
+        self.assertEqual(meta["iris.spp"], "16")
+        self.assertEqual(exr.read_exr_metadata(str(self.tmp / "a.exr"))["iris.spp"], "16")
+        (self.tmp / "bad.exr").write_text("not an image")
+        with self.assertRaises(exr.ExrError) as cm:
+            exr.read_exr(str(self.tmp / "bad.exr"))
+        self.assertIn("bad.exr", str(cm.exception))
+        data = (self.tmp / "a.exr").read_bytes()
+        (self.tmp / "cut.exr").write_bytes(data[:len(data) - 40])
+        with self.assertRaises(exr.ExrError):
+            exr.read_exr(str(self.tmp / "cut.exr"))
+
+
+@unittest.skipUnless(HAVE_TOOLS, f"compare/merge not built in {BUILD}")
+class MergeAndCompareTest(TempDirTest):
+    def test_merge_weights_by_spp_and_reads_back_zip_exr(self):
+        rng = np.random.default_rng(0)
+        a, b = rng.random((6, 9, 3)).astype(np.float32), rng.random((6, 9, 3)).astype(np.float32)
+        meta = {"iris.mode": "spectral", "iris.scene": "s.xml", "iris.spectral_samples": "4"}
+        exr.write_exr(str(self.tmp / "a.exr"), a, metadata={**meta, "iris.spp": 1, "iris.seed": 1})
+        exr.write_exr(str(self.tmp / "b.exr"), b, metadata={**meta, "iris.spp": 3, "iris.seed": 2})
+        out = collect.merge(BUILD / "merge", [self.tmp / "a.exr", self.tmp / "b.exr"], self.tmp / "m.exr")
+        pixels, names, m = exr.read_exr(str(out))   # written by OpenEXR with ZIP compression
+        np.testing.assert_allclose(exr.rgb_of(pixels, names), (a + 3 * b) / 4, rtol=1e-6, atol=1e-7)
+        self.assertEqual(m["iris.spp"], "4")
+        exr.write_exr(str(self.tmp / "c.exr"), a, metadata={**meta, "iris.mode": "rgb", "iris.spp": 1, "iris.seed": 3})
+        with self.assertRaises(ExperimentError) as cm:
+            collect.merge(BUILD / "merge", [self.tmp / "a.exr", self.tmp / "c.exr"], self.tmp / "bad.exr")
+        self.assertIn("c.exr", str(cm.exception))
+        self.assertIn("iris.mode", str(cm.exception))
+
+    def test_compare_json(self):
+        ref = np.full((4, 4, 3), 0.3, np.float32)
+        exr.write_exr(str(self.tmp / "r.exr"), ref)
+        exr.write_exr(str(self.tmp / "t.exr"), ref + 0.1)
+        m = collect.compare(BUILD / "compare", self.tmp / "t.exr", self.tmp / "r.exr")
+        self.assertAlmostEqual(m["mse"], 0.01, places=6)
+        self.assertAlmostEqual(m["relmse"], 0.01 / 0.1, places=5)
+        self.assertAlmostEqual(m["psnr"], 20.0, places=3)
+        self.assertEqual(collect.compare(BUILD / "compare", self.tmp / "r.exr", self.tmp / "r.exr")["psnr"], math.inf)
+        exr.write_exr(str(self.tmp / "small.exr"), ref[:2])
+        with self.assertRaises(ExperimentError) as cm:
+            collect.compare(BUILD / "compare", self.tmp / "small.exr", self.tmp / "r.exr")
+        self.assertIn("small.exr", str(cm.exception))
+
+
+class SceneCheckTest(TempDirTest):
+    def test_reports_missing_scene_parameter_and_material(self):
+        scene = self.scene()
+        rel = os.path.relpath(scene, REPO)
+        plugins = {"MaterialRegistry": {"diffuse"}}
+        scenes.check_scenes([scenes.SceneSpec(rel, materials=("diffuse",), params=("thickness",))], plugins=plugins)
+        with self.assertRaises(ExperimentError) as cm:
+            scenes.check_scenes([scenes.SceneSpec("scenes/nope.xml", note="being written"),
+                                 scenes.SceneSpec(rel, materials=("thinfilm",), params=("alpha",))], plugins=plugins)
+        msg = str(cm.exception)
+        self.assertIn("scenes/nope.xml: scene not available yet (being written)", msg)
+        self.assertIn("material 'thinfilm' is not available yet", msg)
+        self.assertIn('<default name="alpha"', msg)
+        bad = self.scene(SCENE_XML.replace("diffuse", "mystery"), "bad.xml")
+        with self.assertRaises(ExperimentError) as cm:
+            scenes.check_scenes([scenes.SceneSpec(os.path.relpath(bad, REPO))], plugins=plugins)
+        self.assertIn("'mystery'", str(cm.exception))
+
+    def test_registered_plugins_found_in_sources(self):
+        self.assertIn("diffuse", scenes.registered_plugins()["MaterialRegistry"])
+
+
+class RunnerTest(TempDirTest):
+    def test_failures_are_reported_and_existing_outputs_skipped(self):
+        bdir = self.fake_build()
+        scene = self.scene()
+        jobs = expand([Sweep("s", {"a": str(scene)}, axes={"fail": [0, 1]}, fixed={"spp": 1})], self.tmp, bdir / "render")
+        results = runner.run_local(jobs, parallel=2, log=lambda *_: None)
+        self.assertTrue(results[0].ok)
+        self.assertFalse(results[1].ok)
+        self.assertIn("not registered", results[1].message)
+        self.assertIn("not registered", jobs[1].output.with_suffix(".log").read_text())
+        again = runner.run_local(jobs[:1], log=lambda *_: None)
+        self.assertTrue(again[0].skipped)
+
+
+@unittest.skipUnless(HAVE_TOOLS, f"compare/merge not built in {BUILD}")
+class ExperimentEndToEndTest(TempDirTest):
+    """The experiment scripts with the fake renderer: the conclusions follow from the data."""
+
+    def run_experiment(self, module, extra=(), scene_text=SCENE_XML):
+        sys.path.insert(0, str(REPO / "experiments"))
+        mod = __import__(module)
+        exp_class = [v for v in vars(mod).values() if isinstance(v, type) and v.__module__ == module
+                     and hasattr(v, "analyse")][0]
+        out = self.tmp / "out"
+        argv = ["--quick", "--build-dir", str(self.fake_build()), "--out", str(out), "--scene", str(self.scene(scene_text)),
+                "--parallel", "2", *extra]
+        stdout, stderr = io.StringIO(), io.StringIO()
+        with redirect_stdout(stdout), redirect_stderr(stderr):
+            code = run(exp_class(), argv)
+        self.assertEqual(code, 0, stderr.getvalue())
+        return out, stdout.getvalue()
+
+    def test_channel_count(self):
+        out, _ = self.run_experiment("channel_count")
+        rows = collect.read_csv(out / "results.csv")
+        spectral = [r for r in rows if r["mode"] == "spectral"]
+        self.assertEqual([int(r["spectral_samples"]) for r in spectral], [1, 2, 4, 8, 16, 32])
+        relmse = [float(r["relmse"]) for r in spectral]
+        self.assertLess(relmse[-1], relmse[0])  # noise 0.2/sqrt(spp·N) falls with N
+        text = (out / "report.md").read_text()
+        best = min(spectral, key=lambda r: float(r["relmse"]))["wavelengths_per_path"]
+        self.assertIn(f"lowest relMSE at N = {best}.", text)
+        self.assertIn("## Machine", text)
+        self.assertTrue((out / "thin_film_images.png").stat().st_size > 1000)
+        ref_meta = exr.read_exr_metadata(str(out / "reference" / "thin_film.exr"))
+        self.assertEqual(ref_meta["iris.spp"], "32")  # 2 seeds x 16 spp merged
+
+    def test_per_bounce_phase_without_real_difference_has_zero_excess(self):
+        # The fake renderer ignores phase_model: both variants are the same image, so the measured
+        # difference must equal the noise floor exactly.
+        text = SCENE_XML.replace('<default name="offset"', '<default name="phase_model" value="once"/>\n'
+                                 '    <default name="offset"')
+        out, _ = self.run_experiment("per_bounce_phase", scene_text=text)
+        rows = collect.read_csv(out / "results.csv")
+        self.assertEqual(len(rows), 5)
+        for r in rows:
+            self.assertEqual(float(r["excess_de00_mean"]), 0.0)
+        self.assertIn("just-noticeable ΔE00 = 1: none.", (out / "report.md").read_text())
+
+    def test_slurm_and_dry_run_modes_do_not_render(self):
+        out, stdout = self.run_experiment("approximation_error", ["--slurm"])
+        script = (out / "slurm_approximation_error.sh").read_text()
+        self.assertIn("#SBATCH --array=0-19\n", script)  # 5 thicknesses x (2 reference seeds + rgb + spectral)
+        self.assertFalse((out / "renders").exists())
+        self.assertIn("sbatch", stdout)
+
+    def test_missing_scene_fails_clearly(self):
+        sys.path.insert(0, str(REPO / "experiments"))
+        import thesis_reproduction
+        err = io.StringIO()
+        exp = thesis_reproduction.ThesisReproduction()
+        exp.scene_specs = {"granier": scenes.SceneSpec("scenes/does_not_exist.xml", note="being written")}
+        with redirect_stderr(err), redirect_stdout(io.StringIO()):
+            code = run(exp, ["--quick", "--build-dir", str(self.fake_build()), "--out", str(self.tmp / "o")])
+        self.assertEqual(code, 2)
+        self.assertIn("scenes/does_not_exist.xml: scene not available yet", err.getvalue())
+
+
+if __name__ == "__main__":
+    unittest.main()
