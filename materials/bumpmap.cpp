@@ -54,7 +54,7 @@ std::shared_ptr<Material> createBumpMap(const Properties& p) {
     std::set<std::string> own{"scale", "gradient_step"};
     for (const std::string& name : p.names()) {
         if (own.count(name)) continue;
-        const PropertiesPtr obj = p.getObject(name);
+        const PropertiesPtr obj = nestedObjectOrFail(p, name, "bumpmap", own);
         if (obj->tag() == "texture") {
             textures.push_back(p.getFloatTexture(name));
             own.insert(name);

@@ -42,6 +42,20 @@ inline Frame frameFromHeightGradient(const Frame& f, const vec3& dpdu, const vec
     return Frame::fromNormalTangent(n, dpduB);
 }
 
+/// The nested object under parameter `name` of a wrapper; any other value there is an unknown
+/// parameter of the wrapper (error naming it and the known ones).
+inline PropertiesPtr nestedObjectOrFail(const Properties& p, const std::string& name, const std::string& plugin,
+                                        const std::set<std::string>& ownParams) {
+    try {
+        return p.getObject(name);
+    } catch (const Error&) {
+        std::string known;
+        for (const auto& k : ownParams) known += (known.empty() ? "" : ", ") + k;
+        failAt(p.locationOf(name), "unknown parameter '", name, "' of bsdf '", plugin, "' (known parameters: ", known,
+               ", and nested objects)");
+    }
+}
+
 /// The one material nested in a wrapper `plugin` (Mitsuba style: an unnamed <bsdf> child, or a
 /// <bsdf> under any parameter name not listed in `ownParams`); cached in the child's
 /// Properties::instance like every other scene object. Errors name the wrapper's location.
@@ -52,7 +66,7 @@ inline std::shared_ptr<Material> createNestedMaterial(const Properties& p, const
         if (c->tag() == "bsdf") nested.push_back(c);
     for (const std::string& name : p.names()) {
         if (ownParams.count(name)) continue;
-        const PropertiesPtr obj = p.getObject(name);  // non-objects here are unknown parameters: error
+        const PropertiesPtr obj = nestedObjectOrFail(p, name, plugin, ownParams);
         if (obj->tag() == "bsdf") nested.push_back(obj);
     }
     if (nested.size() != 1)

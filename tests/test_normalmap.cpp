@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/loader/scene_loader.h"
 #include "core/registry.h"
 #include "materials/material.h"
 #include "tests/bsdf_test_util.h"
@@ -193,6 +194,47 @@ TEST(NormalMapAndBumpMap, BadInputThrows) {
         auto p = bumpProps(1.0f, 0.0f, 1.0f);
         p->set("gradient_step", 0.0f, kLoc);
         EXPECT_THROW(create(p), Error);
+    }
+}
+
+TEST(NormalMapAndBumpMap, LoadFromMitsubaXML) {
+    // Mitsuba 3 syntax: the normal map under the name "normalmap", the bump texture under an
+    // arbitrary name, the nested bsdf unnamed or referenced.
+    const std::string xml = R"(<scene version="3.0.0">
+  <bsdf type="principled" id="metal"><float name="metallic" value="1"/></bsdf>
+  <bsdf type="normalmap" id="nm">
+    <rgb name="normalmap" value="0.75 0.5 0.9330127"/>
+    <ref id="metal"/>
+  </bsdf>
+  <bsdf type="bumpmap" id="bump">
+    <texture type="checkerboard" name="arbitrary"/>
+    <float name="scale" value="0.5"/>
+    <bsdf type="cloth"><float name="roughness" value="0.3"/></bsdf>
+  </bsdf>
+  <shape type="sphere"><ref id="nm"/></shape>
+  <shape type="sphere"><ref id="bump"/></shape>
+</scene>)";
+    const SceneDescription scene = loadSceneFromString(xml, std::filesystem::temp_directory_path().string());
+    ASSERT_EQ(scene.shapes.size(), 2u);
+    const ShadingPoint sp = testPoint();
+    const Frame f = scene.shapes[0].material->shadingFrame(sp);
+    const float a = 30.0f * kPi / 180.0f;  // (0.75, 0.5, 0.933) = 0.5 + 0.5 (sin 30°, 0, cos 30°)
+    expectVecNear(f.n, std::sin(a) * sp.shading.s + std::cos(a) * sp.shading.n, 1e-5f, "n (xml)");
+    ASSERT_TRUE(scene.shapes[1].material);
+    expectOrthonormal(scene.shapes[1].material->shadingFrame(sp));
+
+    const std::string bad = R"(<scene version="3.0.0">
+  <bsdf type="bumpmap">
+    <float name="scal" value="0.5"/>
+    <texture type="checkerboard" name="h"/>
+    <bsdf type="diffuse"/>
+  </bsdf>
+</scene>)";
+    try {
+        loadSceneFromString(bad, ".");
+        ADD_FAILURE() << "expected an iris::Error for the misspelt parameter";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("<string>:3: unknown parameter 'scal'"), std::string::npos) << e.what();
     }
 }
 
