@@ -1,0 +1,215 @@
+// The thesis' proposed model (thesis 000 §3.2, eqs. 3.15–3.30, Fig. 3.5): rough plastic energies
+// (microfacet coat over a diffuse base, §2.5) evaluated per channel with that channel's η_t and λ,
+// plus Granier & Heidrich's phase (interference) term.
+//
+// Per channel c (RGB: η_t[c], λ[c]; spectral: η_t(λ), λ), with η = η_t/η_i:
+//   fr = ws · F D G / (4 μi μo)                                  (eq. 3.15)
+//   ft = wd · T(η,α,μi) T(η,α,μo) / ((1 − Rd) π η²)              (eq. 3.16; Rd = Fdr = 1 − Td(η,α), eqs. 3.17–3.19)
+//   Φ  = π η_t d/λ ((ωti + ωto)·(−n0)) = π η_t d/λ (cosθti + cosθto)   (eq. 3.20)
+//   phase_mode "total" (the thesis):  f = fr + ft + 2 cos(2Φ) sqrt(fr ft)   (eqs. 3.21–3.22)
+//   phase_mode "per_reflection" (thesis §5 future work): coherent sum over internal round trips,
+//     amplitudes sqrt(fr) and sqrt(ft (1 − Rd)) Rd^(k/2), phase 2Φ per round trip:
+//     f = |sqrt(fr) + sqrt(ft(1−Rd)) Σ_k Rd^(k/2) e^{i(k+1)2Φ}|²
+//       = fr + ft(1−Rd)/D + 2 sqrt(fr ft (1−Rd)) (cos 2Φ − sqrt(Rd))/D,  D = 1 − 2 sqrt(Rd) cos 2Φ + Rd
+//   phase = false: f = fr + ft (equals roughplastic with the same η, α, ws, wd; thesis §4.2.2).
+// Sampling as rough plastic (eqs. 3.23–3.30): visible-normal reflection in the coat frame (normal
+// n0) or a cosine lobe about n1, mixed with the probabilities of materials/thesis_rough_coat.h.
+//
+// Parameters (defaults: thesis Table 4.2):
+//   n0, n1 (vector, (0,0,1)), eta_i (1.0), eta_t (rgb|spectrum, (1.8,1.7,1.6)), thickness
+//   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
+//   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
+//   phase_mode ("total"|"per_reflection", "total").
+#include "core/registry.h"
+#include "materials/material.h"
+#include "materials/thesis_channels.h"
+#include "materials/thesis_rough_coat.h"
+
+namespace iris {
+namespace {
+
+enum class PhaseMode { Off, Total, PerReflection };
+
+class ProposedBSDF final : public BSDF {
+public:
+    struct Params {
+        const RoughTransmittanceTables* tables;
+        MicrofacetDistribution dist;
+        float alpha, etaI, d;
+        Frame coat;        // frame of the top normal n0 (coat microfacet model)
+        vec3 n1;           // base normal (diffuse sampling)
+        bool tilted0, tilted1;
+        PhaseMode phase;
+        SampledSpectrum eta, etaT, lambda, ws, wd;
+    };
+
+    explicit ProposedBSDF(const Params& p) : p_(p), wdEff_(p.wd), fdr_(p.wd) {
+        for (int c = 0; c < p_.eta.size(); ++c) {
+            fdr_[c] = 1.0f - p_.tables->internalDiffuseTransmittance(p_.eta[c], p_.alpha);  // eq. 3.19
+            wdEff_[c] = roughCoatAlbedo(p_.wd[c], fdr_[c], false);                          // wd/(1 − Rd)
+        }
+    }
+
+    vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
+
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+        const int n = p_.eta.size();
+        SampledSpectrum f(n);
+        if (wo.z <= 0 || wi.z <= 0) return f;
+        const vec3 woC = toCoat(wo), wiC = toCoat(wi);
+        if (woC.z <= 0 || wiC.z <= 0) return f;
+        for (int c = 0; c < n; ++c) {
+            const float eta = p_.eta[c];
+            const float s = roughCoatSpecular(p_.dist, woC, wiC, eta);
+            const float d = roughCoatDiffuse(*p_.tables, p_.alpha, eta, wiC.z, woC.z);
+            const float fr = p_.ws[c] * s;     // eq. 3.15
+            const float ft = wdEff_[c] * d;    // eq. 3.16
+            if (p_.phase == PhaseMode::Off) {
+                f[c] = fr + ft;
+                continue;
+            }
+            // Specular refraction of wi and wo into the film about n0 (eq. 3.1–3.2 reading).
+            const float inv = 1.0f / eta;
+            const float cosTi = safeSqrt(1.0f - inv * inv * (1.0f - wiC.z * wiC.z));
+            const float cosTo = safeSqrt(1.0f - inv * inv * (1.0f - woC.z * woC.z));
+            const float phi = kPi * p_.etaT[c] * p_.d / p_.lambda[c] * (cosTi + cosTo);  // eq. 3.20
+            const float cos2phi = std::cos(2.0f * phi);
+            if (p_.phase == PhaseMode::Total) {
+                f[c] = fr + ft + 2.0f * cos2phi * std::sqrt(fr * ft);  // eqs. 3.21–3.22
+            } else {
+                const float rd = fdr_[c], r = std::sqrt(rd);
+                const float a1sq = ft * (1.0f - rd);
+                const float den = std::max(1e-12f, 1.0f - 2.0f * r * cos2phi + rd);
+                f[c] = std::max(0.0f, fr + a1sq / den + 2.0f * std::sqrt(fr * a1sq) * (cos2phi - r) / den);
+            }
+        }
+        return f;
+    }
+
+    float specularProbability(const vec3& woC) const {
+        float t = 0.0f;
+        const int n = p_.eta.size();
+        for (int c = 0; c < n; ++c) t += p_.tables->transmittance(p_.eta[c], p_.alpha, woC.z);
+        return roughCoatSpecularProbability(p_.ws.average(), p_.wd.average(), t / float(n));
+    }
+
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z <= 0) return std::nullopt;
+        const vec3 woC = toCoat(wo);
+        if (woC.z <= 0) return std::nullopt;
+        const float ps = specularProbability(woC);
+        BSDFSample s;
+        if (uc < ps) {  // eqs. 3.23–3.25 (visible normals of the coat)
+            const vec3 wiC = reflect(woC, p_.dist.sampleNormal(woC, u));
+            s.wi = p_.tilted0 ? p_.coat.toWorld(wiC) : wiC;
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {  // eqs. 3.27–3.28 (cosine lobe about n1)
+            const vec3 l = sampleCosineHemisphere(u);
+            s.wi = p_.tilted1 ? Frame::fromNormal(p_.n1).toWorld(l) : l;
+            s.flags = kBSDFReflection | kBSDFDiffuse;
+        }
+        if (s.wi.z <= 0) return std::nullopt;
+        s.pdf = pdf(wo, s.wi, mode);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(wo, s.wi, mode);
+        return s;
+    }
+
+    /// Mixture density (eq. 3.30 with the selection probabilities): P p_spec + (1 − P) (wi·n1)/π.
+    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        const vec3 woC = toCoat(wo);
+        if (woC.z <= 0) return 0.0f;
+        const float ps = specularProbability(woC);
+        const float cosB = p_.tilted1 ? glm::dot(wi, p_.n1) : wi.z;
+        return ps * roughCoatSpecularPdf(p_.dist, woC, toCoat(wi)) + (1.0f - ps) * cosineHemispherePdf(cosB);
+    }
+
+    uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
+
+private:
+    Params p_;
+    SampledSpectrum wdEff_, fdr_;
+};
+
+class ProposedMaterial final : public Material {
+public:
+    explicit ProposedMaterial(const Properties& p) {
+        vec3 n0 = p.getVector("n0", vec3(0, 0, 1)), n1 = p.getVector("n1", vec3(0, 0, 1));
+        if (!(glm::length(n0) > 0) || !(glm::length(n1) > 0)) failAt(p.location(), "proposed: n0 and n1 must be non-zero");
+        n0 = glm::normalize(n0);
+        n1_ = glm::normalize(n1);
+        if (n0.z <= 0 || n1_.z <= 0) failAt(p.location(), "proposed: n0 and n1 must point into the upper hemisphere (z > 0)");
+        tilted0_ = !(n0.x == 0 && n0.y == 0);
+        tilted1_ = !(n1_.x == 0 && n1_.y == 0);
+        coat_ = Frame::fromNormal(n0);
+        etaI_ = p.getFloat("eta_i", 1.0f);
+        lambdas_ = p.getRGB("wavelengths", thesisDefaultWavelengths());
+        for (int c = 0; c < 3; ++c)
+            if (!(lambdas_[c] > 0)) failAt(p.locationOf("wavelengths"), "proposed: wavelengths must be positive (nm)");
+        etaT_ = ChannelIOR::fromProperties(p, "eta_t", vec3(1.8f, 1.7f, 1.6f), lambdas_);
+        if (!(etaI_ > 0)) failAt(p.location(), "proposed: eta_i must be positive");
+        const float lo = etaT_.minValue() / etaI_, hi = etaT_.maxValue() / etaI_;
+        if (lo < RoughTransmittanceTables::kEtaMin || hi > RoughTransmittanceTables::kEtaMax)
+            failAt(p.location(), "proposed: eta_t/eta_i must lie in the tabulated range [", RoughTransmittanceTables::kEtaMin,
+                   ", ", RoughTransmittanceTables::kEtaMax, "], got [", lo, ", ", hi, "]");
+        thickness_ = p.getFloatTexture("thickness", 1000.0f);
+        alpha_ = p.getFloatTexture("alpha", 0.08f);
+        if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
+            c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
+            failAt(p.locationOf("alpha"), "proposed: alpha must be in [0, 1], got ", c->value());
+        try {
+            type_ = MicrofacetDistribution::parseType(p.getString("distribution", "beckmann"));
+        } catch (const Error& e) {
+            failAt(p.locationOf("distribution"), "proposed: ", e.what());
+        }
+        ws_ = p.getSpectrumTexture("ws", SpectrumKind::Reflectance, 0.6f);
+        wd_ = p.getSpectrumTexture("wd", SpectrumKind::Reflectance, 0.4f);
+        const bool phase = p.getBool("phase", true);
+        const std::string mode = p.getString("phase_mode", "total");
+        if (mode != "total" && mode != "per_reflection")
+            failAt(p.locationOf("phase_mode"), "proposed: phase_mode must be 'total' or 'per_reflection', got '", mode, "'");
+        phase_ = !phase ? PhaseMode::Off : mode == "total" ? PhaseMode::Total : PhaseMode::PerReflection;
+        tables_ = &roughPlasticTables(type_);
+    }
+
+    const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        ProposedBSDF::Params q;
+        q.tables = tables_;
+        q.alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
+        q.dist = MicrofacetDistribution(type_, q.alpha, q.alpha);
+        q.etaI = etaI_;
+        q.d = std::max(0.0f, thickness_->eval(sp.tex));
+        q.coat = coat_;
+        q.n1 = n1_;
+        q.tilted0 = tilted0_;
+        q.tilted1 = tilted1_;
+        q.phase = phase_;
+        q.etaT = etaT_.sample(wl);
+        q.eta = q.etaT / etaI_;
+        q.lambda = channelLambdas(wl, lambdas_);
+        q.ws = clampZero(ws_->eval(sp.tex, wl));
+        q.wd = clampZero(wd_->eval(sp.tex, wl));
+        return arena.make<ProposedBSDF>(q);
+    }
+
+private:
+    Frame coat_;
+    vec3 n1_, lambdas_;
+    bool tilted0_, tilted1_;
+    float etaI_;
+    ChannelIOR etaT_;
+    FloatTexturePtr thickness_, alpha_;
+    MicrofacetType type_;
+    SpectrumTexturePtr ws_, wd_;
+    PhaseMode phase_;
+    const RoughTransmittanceTables* tables_;
+};
+
+std::shared_ptr<Material> createProposed(const Properties& p) { return std::make_shared<ProposedMaterial>(p); }
+
+}  // namespace
+
+IRIS_REGISTER(MaterialRegistry, "proposed", createProposed);
+
+}  // namespace iris

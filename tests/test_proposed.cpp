@@ -1,0 +1,193 @@
+// The thesis' proposed model (thesis 000 §3.2): validation against roughplastic (§4.2.2), per-
+// channel energies equal rough plastic with that channel's η, the phase terms against an
+// independent evaluation (and, for per_reflection, a direct sum of the round-trip series),
+// RGB/spectral exactness, and sampling.
+#include <gtest/gtest.h>
+
+#include <complex>
+
+#include "materials/rough_plastic_tables.h"
+#include "tests/bsdf_test_util.h"
+#include "tests/thesis_test_util.h"
+
+using namespace iris;
+using namespace iris::test;
+
+namespace {
+
+std::vector<std::pair<vec3, vec3>> randomPairs(int n, uint64_t seed) {
+    Pcg32 rng(seed, 1);
+    std::vector<std::pair<vec3, vec3>> v;
+    for (int i = 0; i < n; ++i) {
+        const vec3 wo = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
+        // Half the wi near the mirror direction so that the specular lobe is exercised.
+        vec3 wi = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
+        if (i % 2) wi = glm::normalize(reflectLocal(wo) + 0.1f * (wi - vec3(0, 0, 1)));
+        if (wo.z > 0.01f && wi.z > 0.01f) v.push_back({wo, wi});
+    }
+    return v;
+}
+
+}  // namespace
+
+TEST(Proposed, EqualsRoughPlasticWithoutPhaseAndEqualEta) {
+    // Thesis §4.2.2: phase off, the same η in every channel → rough plastic, to float precision.
+    for (const char* dist : {"beckmann", "ggx"}) {
+        auto prop = makeBSDF("proposed", {{"phase", false},
+                                          {"eta_t", RGBValue{vec3(1.5f)}},
+                                          {"eta_i", 1.0f},
+                                          {"alpha", 0.124f},
+                                          {"distribution", std::string(dist)},
+                                          {"ws", 0.6f},
+                                          {"wd", 0.4f}});
+        auto rp = makeBSDF("roughplastic", {{"int_ior", 1.5f},
+                                            {"ext_ior", 1.0f},
+                                            {"alpha", 0.124f},
+                                            {"distribution", std::string(dist)},
+                                            {"specular_reflectance", 0.6f},
+                                            {"diffuse_reflectance", 0.4f}});
+        int nonzero = 0;
+        for (const auto& [wo, wi] : randomPairs(400, 3)) {
+            const SampledSpectrum a = prop.bsdf->eval(wo, wi, TransportMode::Radiance);
+            const SampledSpectrum b = rp.bsdf->eval(wo, wi, TransportMode::Radiance);
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(a[c], b[c]) << dist;
+            nonzero += a[0] > 0;
+            const float pa = prop.bsdf->pdf(wo, wi, TransportMode::Radiance);
+            const float pb = rp.bsdf->pdf(wo, wi, TransportMode::Radiance);
+            EXPECT_NEAR(pa, pb, 1e-6f * std::max(1.0f, pb));
+        }
+        EXPECT_GT(nonzero, 300);
+    }
+}
+
+TEST(Proposed, ChannelsAreRoughPlasticWithTheirEtaPlusPhase) {
+    // Thesis eqs. 3.15–3.22, checked against roughplastic split into fr (diffuse off) and ft
+    // (specular off) for each channel's η, and Φ evaluated here in double precision.
+    const vec3 etaT(1.5f, 1.6f, 1.8f), lambda(645, 525, 445);
+    const float d = 350.0f, alpha = 0.1f, ws = 0.5f, wd = 0.5f;
+    for (const char* mode : {"total", "per_reflection"}) {
+        auto prop = makeBSDF("proposed", {{"eta_t", RGBValue{etaT}},
+                                          {"thickness", d},
+                                          {"alpha", alpha},
+                                          {"ws", ws},
+                                          {"wd", wd},
+                                          {"phase_mode", std::string(mode)}});
+        for (int c = 0; c < 3; ++c) {
+            auto fr = makeBSDF("roughplastic", {{"int_ior", etaT[c]}, {"ext_ior", 1.0f}, {"alpha", alpha},
+                                                {"specular_reflectance", ws}, {"diffuse_reflectance", 0.0f}});
+            auto ft = makeBSDF("roughplastic", {{"int_ior", etaT[c]}, {"ext_ior", 1.0f}, {"alpha", alpha},
+                                                {"specular_reflectance", 0.0f}, {"diffuse_reflectance", wd}});
+            for (const auto& [wo, wi] : randomPairs(100, 7 + c)) {
+                const double Fr = fr.bsdf->eval(wo, wi, TransportMode::Radiance)[c];
+                const double Ft = ft.bsdf->eval(wo, wi, TransportMode::Radiance)[c];
+                const double e = etaT[c];
+                auto cosT = [&](double mu) { return std::sqrt(1 - (1 - mu * mu) / (e * e)); };
+                const double phi = M_PI * e * d / lambda[c] * (cosT(wi.z) + cosT(wo.z));  // eq. 3.20
+                double expected;
+                if (std::string(mode) == "total") {
+                    expected = Fr + Ft + 2 * std::cos(2 * phi) * std::sqrt(Fr * Ft);  // eqs. 3.21–3.22
+                } else {
+                    // Direct sum of the round-trip series (independent of the closed form):
+                    // first-trip energy Ft (1 − Rd), ratio Rd per extra trip, phase 2Φ per trip.
+                    const double rd = 1.0 - roughPlasticTables(MicrofacetType::Beckmann)
+                                                .internalDiffuseTransmittance(etaT[c], alpha);
+                    std::complex<double> amp(std::sqrt(Fr), 0.0);
+                    const double a1amp = std::sqrt(Ft * (1 - rd));
+                    for (int k = 0; k < 4000; ++k)
+                        amp += a1amp * std::pow(std::sqrt(rd), k) * std::polar(1.0, (k + 1) * 2 * phi);
+                    expected = std::norm(amp);
+                }
+                const float got = prop.bsdf->eval(wo, wi, TransportMode::Radiance)[c];
+                EXPECT_NEAR(got, expected, 2e-5 * std::max(1.0, expected)) << mode << " channel " << c;
+            }
+        }
+    }
+}
+
+TEST(Proposed, PhaseAveragesOutOverThickness) {
+    // Averaged over many thicknesses the interference terms vanish: both phase modes give the
+    // incoherent fr + ft on average (the per_reflection series conserves the incoherent energy).
+    const vec3 wo = dirFromCos(0.7f, 0.3f), wi = glm::normalize(reflectLocal(wo) + vec3(0.05f, 0.02f, 0));
+    auto off = makeBSDF("proposed", {{"phase", false}, {"alpha", 0.3f}});
+    const SampledSpectrum ref = off.bsdf->eval(wo, wi, TransportMode::Radiance);
+    for (const char* mode : {"total", "per_reflection"}) {
+        double sum[3] = {0, 0, 0};
+        const int n = 4000;
+        for (int k = 0; k < n; ++k) {
+            auto inst = makeBSDF("proposed", {{"alpha", 0.3f}, {"thickness", 1000.0f + 7.3f * k},
+                                              {"phase_mode", std::string(mode)}});
+            const SampledSpectrum f = inst.bsdf->eval(wo, wi, TransportMode::Radiance);
+            for (int c = 0; c < 3; ++c) sum[c] += f[c] / n;
+        }
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], ref[c], 0.01 * ref[c]) << mode << " channel " << c;
+    }
+}
+
+TEST(Proposed, RGBModeIsDeterministicAndSpectralN1MatchesChannels) {
+    auto props = makeProps("proposed", {{"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}},
+                                        {"thickness", 76.0f},
+                                        {"n0", VectorValue{vec3(0.1736f, 0, 0.9848f)}},
+                                        {"alpha", 0.124f}});
+    auto a = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto b = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    const float lambdas[3] = {645, 525, 445};
+    std::vector<BSDFInstance> spectral;
+    for (float l : lambdas) spectral.push_back(makeBSDF(*props, exactWavelength(l)));
+    for (const auto& [wo, wi] : randomPairs(200, 5)) {
+        const SampledSpectrum fa = a.bsdf->eval(wo, wi, TransportMode::Radiance);
+        const SampledSpectrum fb = b.bsdf->eval(wo, wi, TransportMode::Radiance);
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_EQ(fa[c], fb[c]);
+            ASSERT_EQ(spectral[c].bsdf->eval(wo, wi, TransportMode::Radiance)[0], fa[c]) << "channel " << c;
+        }
+    }
+}
+
+TEST(Proposed, SamplingMatchesPdfChi2) {
+    struct Case {
+        const char* dist;
+        vec3 n0;
+        float alpha, cosO;
+    };
+    const Case cases[] = {{"beckmann", vec3(0, 0, 1), 0.08f, 0.8f},
+                          {"beckmann", vec3(0.1736f, 0, 0.9848f), 0.124f, 0.7f},
+                          {"ggx", vec3(0.1736f, 0, 0.9848f), 0.3f, 0.5f},
+                          {"ggx", vec3(0, 0, 1), 0.5f, 0.2f}};
+    Chi2Options opt;
+    opt.numTests = 4;
+    for (const Case& k : cases) {
+        auto inst = makeBSDF("proposed", {{"distribution", std::string(k.dist)},
+                                          {"n0", VectorValue{k.n0}},
+                                          {"alpha", k.alpha},
+                                          {"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}}});
+        const vec3 wo = dirFromCos(k.cosO, 0.4f);
+        const Chi2Result r = chi2Test(*inst.bsdf, wo, opt);
+        EXPECT_TRUE(r.passed) << k.dist << " alpha " << k.alpha << ": " << r.message;
+        const ConsistencyResult c = checkConsistency(*inst.bsdf, wo);
+        EXPECT_EQ(c.invalid, 0) << c.message;
+        EXPECT_LT(c.maxRelErrF, 1e-5f);
+        EXPECT_LT(c.maxRelErrPdf, 1e-5f);
+    }
+}
+
+TEST(Proposed, SampledMassMatchesPdfMassWithTiltedBase) {
+    // Tilted n1 (cosine lobe crosses the horizon): accepted fraction = ∫ pdf over z > 0.
+    auto inst = makeBSDF("proposed", {{"n0", VectorValue{vec3(0.1736f, 0, 0.9848f)}},
+                                      {"n1", VectorValue{vec3(-0.2f, 0.1f, 0.97f)}},
+                                      {"alpha", 0.2f}});
+    const vec3 wo = dirFromCos(0.5f, 2.0f);
+    const double mass = upperPdfMass(*inst.bsdf, wo);
+    const auto [frac, sigma] = acceptedFraction(*inst.bsdf, wo);
+    EXPECT_LT(mass, 0.999);
+    EXPECT_NEAR(frac, mass, 4 * sigma + 2e-4);
+    const ConsistencyResult c = checkConsistency(*inst.bsdf, wo);
+    EXPECT_EQ(c.invalid, 0) << c.message;
+    EXPECT_LT(c.maxRelErrPdf, 1e-5f);
+}
+
+TEST(Proposed, RejectsBadParameters) {
+    EXPECT_THROW(makeBSDF("proposed", {{"phase_mode", std::string("sometimes")}}), Error);
+    EXPECT_THROW(makeBSDF("proposed", {{"eta_t", RGBValue{vec3(1.5f, 3.5f, 1.6f)}}}), Error);
+    EXPECT_THROW(makeBSDF("proposed", {{"alpha", 2.0f}}), Error);
+    EXPECT_THROW(makeBSDF("proposed", {{"distribution", std::string("phong")}}), Error);
+}
