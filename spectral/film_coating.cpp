@@ -65,7 +65,7 @@ void checkPositive(const Properties& p, const std::string& name, const IorSpec& 
 }  // namespace
 
 FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
-                                                float defThickness) {
+                                                float defThickness, const char* etaName, const char* kName) {
     FilmCoatingSpec s;
     s.extIor = p.getFloat("ext_ior", 1.0f);
     if (!(s.extIor > 0)) failAt(p.locationOf("ext_ior"), "ext_ior must be > 0, got ", s.extIor);
@@ -92,10 +92,14 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
         if (!(l.thicknessNm >= 0)) failAt(p.locationOf(base + "_thickness"), base, "_thickness must be >= 0 nm");
         s.extra.push_back(l);
     }
-    s.substrateEta = IorSpec::fromProperties(p, "substrate_eta", defSubstrateEta);
-    s.substrateK = IorSpec::fromProperties(p, "substrate_k", defSubstrateK);
-    checkPositive(p, "substrate_eta", s.substrateEta, false);
-    checkPositive(p, "substrate_k", s.substrateK, true);
+    s.substrateEta = IorSpec::fromProperties(p, etaName, defSubstrateEta);
+    checkPositive(p, etaName, s.substrateEta, false);
+    if (kName) {
+        s.substrateK = IorSpec::fromProperties(p, kName, defSubstrateK);
+        checkPositive(p, kName, s.substrateK, true);
+    } else {
+        s.substrateK = IorSpec(0.0f);
+    }
 
     const std::string mode = p.getString("phase_mode", "exact");
     if (mode == "exact") s.mode = FilmPhaseMode::Exact;
@@ -209,6 +213,63 @@ void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectru
         R[k] = float(r.R());
         T[k] = float(r.T());
     }
+}
+
+namespace {
+
+/// Gauss–Legendre nodes and weights on [0, 1] (Newton iteration on P_n; Press et al., Numerical
+/// Recipes 3rd ed. §4.6.1).
+struct GaussLegendre {
+    static constexpr int kN = 16;
+    double x[kN], w[kN];
+    GaussLegendre() {
+        const int n = kN;
+        for (int i = 0; i < n; ++i) {
+            double z = std::cos(3.141592653589793 * (i + 0.75) / (n + 0.5)), pp = 0;
+            for (int it = 0; it < 100; ++it) {
+                double p1 = 1, p2 = 0;
+                for (int j = 0; j < n; ++j) {
+                    const double p3 = p2;
+                    p2 = p1;
+                    p1 = ((2 * j + 1) * z * p2 - j * p3) / (j + 1);
+                }
+                pp = n * (z * p1 - p2) / (z * z - 1);
+                const double dz = p1 / pp;
+                z -= dz;
+                if (std::abs(dz) < 1e-15) break;
+            }
+            x[i] = 0.5 * (1 - z);
+            w[i] = 1.0 / ((1 - z * z) * pp * pp);  // 2/((1−z²)P'²) on [−1,1], halved for [0,1]
+        }
+    }
+};
+
+const GaussLegendre& gaussLegendre() {
+    static const GaussLegendre g;
+    return g;
+}
+
+}  // namespace
+
+double FilmCoating::internalHemisphericalReflectance(int k) const {
+    const GaussLegendre& g = gaussLegendre();
+    const double nSub = substrate_[k].real();
+    // Below μc the exterior wave is evanescent: R = 1 for lossless layers, < 1 with absorption or
+    // tunnelling through thin layers, so that part is integrated too (not set to 1).
+    const double ratio = extIor_ / nSub;
+    const double muC = ratio < 1 ? std::sqrt(1 - ratio * ratio) : 0.0;
+    // Above μc, R(μ) has a square-root edge at μc: substitute μ = μc + (1 − μc) t², dμ = 2(1 − μc) t dt,
+    // which makes the integrand smooth in t. Below μc, plain Gauss–Legendre in μ.
+    double acc = 0;
+    for (int i = 0; i < GaussLegendre::kN; ++i) {
+        if (muC > 0) {
+            const double mu = muC * g.x[i];
+            acc += muC * g.w[i] * stackRTFromBelow(k, mu).R() * mu;
+        }
+        const double t = g.x[i], mu = muC + (1 - muC) * t * t;
+        acc += g.w[i] * 2 * (1 - muC) * t * stackRTFromBelow(k, mu).R() * mu;
+    }
+    return std::clamp(2.0 * acc, 0.0, 1.0);
 }
 
 }  // namespace iris

@@ -58,10 +58,12 @@ struct FilmCoatingSpec {
     FilmRGBMode rgbMode = FilmRGBMode::Point;
 
     /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
-    /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (substrate_eta, substrate_k
-    /// with the given defaults). Throws a located iris::Error on invalid values.
+    /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
+    /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
+    /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0).
     static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
-                                          float defThickness = 300.0f);
+                                          float defThickness = 300.0f, const char* etaName = "substrate_eta",
+                                          const char* kName = "substrate_k");
 };
 
 /// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
@@ -87,6 +89,12 @@ public:
     /// Stack result at entry k (exterior side).
     FilmStackResult stackRT(int k, double cosTheta) const;
     FilmStackResult stackRTFromBelow(int k, double cosTheta) const;
+
+    /// Hemispherical (cosine-weighted) reflectance of the stack lit from the substrate side,
+    /// r_int = 2 ∫_0^1 R_below(μ) μ dμ, at entry k: Gauss–Legendre quadrature (16 nodes) on each side of
+    /// the critical cosine μc = sqrt(1 − (n_ext/n_sub)²), where R jumps to total reflection (above μc
+    /// with μ = μc + (1 − μc) t² to remove the square-root edge).
+    double internalHemisphericalReflectance(int k) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }

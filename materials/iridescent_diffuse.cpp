@@ -1,0 +1,167 @@
+// A thin-film coating over a Lambertian base (plugin "iridescent_diffuse"): exterior (ext_ior) /
+// film stack / clear binder of index int_ior / diffuse base of albedo ρ (`reflectance`).
+//
+//   specular:  the film stack's reflectance R(λ, ·) on a smooth interface (delta lobe) or on
+//              microfacets (R at wo·h, D G / (4 cosθo cosθi), Walter et al. 2007);
+//   diffuse:   f_d = ρ T(λ, θi) T(λ, θo) / (π η² (1 − ρ r_int(λ)))
+//              — the plastic model of Weidlich & Wilkie 2007 / Mitsuba's smooth plastic (Jakob,
+//              Mitsuba documentation "plastic"), with the interface transmittances (1 − F)
+//              replaced by the stack's transmittance T (film absorption included, T reciprocal)
+//              and the internal reflectance of the binder side replaced by the stack's
+//              hemispherical reflectance from below r_int (FilmCoating::
+//              internalHemisphericalReflectance, Gauss–Legendre quadrature per wavelength).
+//              The internal bounces between base and film are summed incoherently (the binder is
+//              thick), the 1/η² accounts for the radiance compression inside the binder.
+// For the rough coat the diffuse term uses the same macro-surface T and r_int (the smooth-coat
+// approximation, as Mitsuba's roughplastic does with Fresnel); see docs/thin_film.md.
+// Sampling: the specular lobe with probability ps = R̄ / (R̄ + T̄ ρ̄) (clamped to [0.05, 0.95]),
+// else cosine-weighted. One-sided.
+#include "core/registry.h"
+#include "core/sampling.h"
+#include "materials/material.h"
+#include "materials/microfacet.h"
+#include "spectral/film_coating.h"
+
+namespace iris {
+namespace {
+
+class IridescentDiffuseBSDF final : public BSDF {
+public:
+    IridescentDiffuseBSDF(const FilmCoating& coating, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
+                          bool smooth)
+        : coating_(coating), dist_(dist), smooth_(smooth) {
+        const int n = coating_.size();
+        // Diffuse base factor ρ / (π η² (1 − ρ r_int)) per wavelength.
+        base_ = SampledSpectrum(n);
+        for (int k = 0; k < n; ++k) {
+            const double eta = coating_.substrateIor(k).real() / coating_.extIor();
+            const double rint = coating_.internalHemisphericalReflectance(k);
+            const double denom = 1.0 - rho[k] * rint;
+            base_[k] = denom > 0 ? float(rho[k] / (3.14159265358979323846 * eta * eta * denom)) : 0.0f;
+        }
+        rhoAvg_ = rho.average();
+    }
+
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+        const int n = coating_.size();
+        if (wo.z <= 0 || wi.z <= 0) return SampledSpectrum(n);
+        SampledSpectrum f = diffuse(wo, wi);
+        if (!smooth_) f += specular(wo, wi);
+        return f;
+    }
+
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z <= 0) return std::nullopt;
+        const float ps = specularProbability(wo);
+        BSDFSample s;
+        if (uc < ps) {
+            if (smooth_) {
+                s.wi = reflectLocal(wo);
+                s.pdf = ps;
+                s.f = coating_.reflectance(wo.z) / wo.z;
+                s.flags = kBSDFReflection | kBSDFSpecular;
+                return s;
+            }
+            const vec3 m = dist_.sampleNormal(wo, u);
+            if (glm::dot(wo, m) <= 0) return std::nullopt;
+            s.wi = reflect(wo, m);
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {
+            s.wi = sampleCosineHemisphere(u);
+            s.flags = kBSDFReflection | kBSDFDiffuse;
+        }
+        if (s.wi.z <= 0) return std::nullopt;
+        s.pdf = pdfWith(wo, s.wi, ps);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(wo, s.wi, mode);
+        return s;
+    }
+
+    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        return pdfWith(wo, wi, specularProbability(wo));
+    }
+
+    uint32_t flags() const override {
+        return kBSDFReflection | kBSDFDiffuse | (smooth_ ? kBSDFSpecular : kBSDFGlossy);
+    }
+
+private:
+    SampledSpectrum diffuse(const vec3& wo, const vec3& wi) const {
+        SampledSpectrum Ri, Ti, Ro, To;
+        coating_.reflectanceTransmittance(wi.z, Ri, Ti);
+        coating_.reflectanceTransmittance(wo.z, Ro, To);
+        return base_ * Ti * To;
+    }
+
+    SampledSpectrum specular(const vec3& wo, const vec3& wi) const {
+        const int n = coating_.size();
+        const vec3 h = glm::normalize(wo + wi);
+        const float woh = glm::dot(wo, h);
+        if (woh <= 0) return SampledSpectrum(n);
+        const float DG = dist_.D(h) * dist_.G(wi, wo, h);
+        if (!(DG > 0)) return SampledSpectrum(n);
+        return coating_.reflectance(woh) * (DG / (4.0f * wo.z * wi.z));
+    }
+
+    float specularProbability(const vec3& wo) const {
+        SampledSpectrum R, T;
+        coating_.reflectanceTransmittance(wo.z, R, T);
+        const float r = R.average(), t = T.average() * rhoAvg_;
+        if (r + t <= 0) return 0.5f;
+        if (t == 0) return 1.0f;
+        if (r == 0) return 0.0f;
+        return std::clamp(r / (r + t), 0.05f, 0.95f);
+    }
+
+    float pdfWith(const vec3& wo, const vec3& wi, float ps) const {
+        float p = (1.0f - ps) * cosineHemispherePdf(wi.z);
+        if (!smooth_) {
+            const vec3 h = glm::normalize(wo + wi);
+            const float woh = glm::dot(wo, h);
+            if (woh > 0) p += ps * dist_.pdf(wo, h) / (4.0f * woh);
+        }
+        return p;
+    }
+
+    FilmCoating coating_;
+    SampledSpectrum base_;
+    float rhoAvg_ = 0;
+    MicrofacetDistribution dist_;
+    bool smooth_;
+};
+
+class IridescentDiffuseMaterial final : public Material {
+public:
+    IridescentDiffuseMaterial(FilmCoatingSpec spec, SpectrumTexturePtr rho, MicrofacetDistribution dist, bool smooth)
+        : spec_(std::move(spec)), rho_(std::move(rho)), dist_(dist), smooth_(smooth) {}
+
+    const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        const SampledSpectrum rho = map(rho_->eval(sp.tex, wl), [](float x) { return std::clamp(x, 0.0f, 1.0f); });
+        return arena.make<IridescentDiffuseBSDF>(FilmCoating(spec_, sp.tex, wl, arena), rho, dist_, smooth_);
+    }
+
+private:
+    FilmCoatingSpec spec_;
+    SpectrumTexturePtr rho_;
+    MicrofacetDistribution dist_;
+    bool smooth_;
+};
+
+std::shared_ptr<Material> createIridescentDiffuse(const Properties& p) {
+    FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
+    if (spec.extIor <= 0) failAt(p.location(), "ext_ior must be > 0");
+    SpectrumTexturePtr rho = p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f);
+    const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
+    const float alpha = p.getFloat("alpha", 0.0f);
+    if (!(alpha >= 0)) failAt(p.locationOf("alpha"), "alpha must be >= 0, got ", alpha);
+    const bool visible = p.getBool("sample_visible", true);
+    return std::make_shared<IridescentDiffuseMaterial>(std::move(spec), std::move(rho),
+                                                       MicrofacetDistribution(type, alpha, alpha, visible), alpha == 0);
+}
+
+}  // namespace
+
+IRIS_REGISTER(MaterialRegistry, "iridescent_diffuse", createIridescentDiffuse);
+
+}  // namespace iris
