@@ -144,9 +144,11 @@ RoughTransmittanceTables buildRoughTables(MicrofacetType type, const RoughTableR
         const double eta = RoughTransmittanceTables::etaNode(ie, res.nEta);
         const double alpha = RoughTransmittanceTables::alphaNode(ia, res.nAlpha);
         for (int im = 0; im < res.nMu; ++im)
-            t.ext[size_t(line) * res.nMu + im] =
-                float(roughTransmittanceIntegral(type, eta, alpha, RoughTransmittanceTables::muNode(im, res.nMu), res.quadrature));
-        t.diffuse[line] = float(roughInternalDiffuseIntegral(type, eta, alpha, res.quadrature, res.quadrature));
+            t.ext[size_t(line) * res.nMu + im] = float(std::clamp(
+                roughTransmittanceIntegral(type, eta, alpha, RoughTransmittanceTables::muNode(im, res.nMu), res.quadrature),
+                0.0, 1.0));  // quadrature error can exceed 1 by ~1e-7
+        t.diffuse[line] =
+            float(std::clamp(roughInternalDiffuseIntegral(type, eta, alpha, res.quadrature, res.quadrature), 0.0, 1.0));
     });
     return t;
 }
@@ -291,11 +293,12 @@ std::optional<RoughTransmittanceTables> readRoughTables(const std::string& path,
         if (why) *why = "checksum mismatch";
         return std::nullopt;
     }
-    for (float v : t.ext)
-        if (!(v >= 0.0f && v <= 1.0f)) {
-            if (why) *why = "values out of range";
-            return std::nullopt;
-        }
+    for (const auto* table : {&t.ext, &t.diffuse})
+        for (float v : *table)
+            if (!(v >= 0.0f && v <= 1.0f)) {
+                if (why) *why = "values out of range";
+                return std::nullopt;
+            }
     return t;
 }
 

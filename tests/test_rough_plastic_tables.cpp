@@ -171,3 +171,16 @@ TEST(RoughPlasticTables, OnlyRoughPlasticMaterialsAcquireTables) {
     EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::GGX), 1);
     EXPECT_EQ(roughPlasticTablesAcquired(MicrofacetType::Beckmann), b0);
 }
+
+TEST(RoughPlasticTables, FullResolutionTablesRoundTripThroughTheCache) {
+    // Everything the builder writes must be accepted by the reader (values are clamped to [0, 1]).
+    const std::string dir = tempDir("fullres");
+    const std::string path = dir + "/ggx.bin";
+    const RoughTableResolution res;
+    const RoughTransmittanceTables built = loadOrBuildRoughTables(path, MicrofacetType::GGX, res);
+    std::string why;
+    auto back = readRoughTables(path, MicrofacetType::GGX, res, &why);
+    ASSERT_TRUE(back.has_value()) << why;
+    EXPECT_EQ(back->ext, built.ext);
+    std::filesystem::remove_all(dir);
+}
