@@ -77,10 +77,10 @@ TEST(ColorManagement, ShippedConfigByDefault) {
     ScopedOcioEnv env(std::nullopt);
     const ColorManager cm;
     EXPECT_EQ(cm.configPath(), ColorManager::shippedConfigPath());
-    for (const char* cs : {kColorSpaceXYZ, kColorSpaceLinearRec709, "ACEScg", "sRGB", "Raw"})
+    for (const char* cs : {kColorSpaceXYZ, kColorSpaceLinearRec709, "ACEScg", "ACES2065-1", "sRGB", "Raw"})
         EXPECT_TRUE(cm.hasColorSpace(cs)) << cs;
     EXPECT_FALSE(cm.hasColorSpace("no such space"));
-    EXPECT_GE(cm.colorSpaces().size(), 5u);
+    EXPECT_GE(cm.colorSpaces().size(), 6u);
 }
 
 TEST(ColorManagement, XyzToLinearRec709MatchesIecMatrix) {
@@ -147,6 +147,20 @@ TEST(ColorManagement, AcesCgMatchesOcioBuiltinBradford) {
         ref->applyRGB(&expect.x);
         const vec3 got = convert1(cm, ap1, "ACEScg", kColorSpaceLinearRec709);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expect[c], 1e-3f) << c;
+    }
+    // Through XYZ the IEC matrix cancels: AP1/AP0 → CIE-XYZ must equal OCIO's Bradford built-ins closely.
+    const std::pair<const char*, const char*> viaXyz[] = {{"ACEScg", "UTILITY - ACES-AP1_to_CIE-XYZ-D65_BFD"},
+                                                          {"ACES2065-1", "UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD"}};
+    for (const auto& [space, style] : viaXyz) {
+        OCIO::BuiltinTransformRcPtr b = OCIO::BuiltinTransform::Create();
+        b->setStyle(style);
+        const OCIO::ConstCPUProcessorRcPtr toXyz = raw->getProcessor(b)->getDefaultCPUProcessor();
+        for (const vec3& v : {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1), vec3(1, 1, 1), vec3(0.2f, 0.5f, 0.8f)}) {
+            vec3 expect = v;
+            toXyz->applyRGB(&expect.x);
+            const vec3 got = convert1(cm, v, space, kColorSpaceXYZ);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expect[c], 2e-5f) << space << " " << c;
+        }
     }
     const vec3 rt = convert1(cm, convert1(cm, vec3(0.3f, 0.6f, 0.1f), kColorSpaceLinearRec709, "ACEScg"), "ACEScg",
                              kColorSpaceLinearRec709);
