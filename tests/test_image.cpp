@@ -141,3 +141,51 @@ TEST_F(ImageIO, TextFileNamedExrThrowsNamingPath) {
     expectErrorNaming([&] { readImage(p); }, p);
     expectErrorNaming([&] { readEXRMetadata(p); }, p);
 }
+
+namespace {
+
+/// Bytes of an uncompressed scanline EXR header claiming w x h FLOAT "Y" pixels, with a valid-looking
+/// offset table but no pixel data (OpenEXR file layout, openexr.com).
+std::string hugeExrHeader(int w, int h) {
+    std::string s;
+    auto i32 = [&](int32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); };
+    auto attr = [&](const std::string& name, const std::string& type, const std::string& value) {
+        s += name + '\0' + type + '\0';
+        i32(int32_t(value.size()));
+        s += value;
+    };
+    auto ints = [](std::initializer_list<int32_t> v) {
+        std::string out;
+        for (int32_t x : v) out.append(reinterpret_cast<const char*>(&x), 4);
+        return out;
+    };
+    i32(20000630);
+    i32(2);
+    attr("channels", "chlist", std::string("Y\0", 2) + ints({2}) + std::string(4, '\0') + ints({1, 1}) + std::string(1, '\0'));
+    attr("compression", "compression", std::string(1, '\0'));
+    attr("dataWindow", "box2i", ints({0, 0, w - 1, h - 1}));
+    attr("displayWindow", "box2i", ints({0, 0, w - 1, h - 1}));
+    attr("lineOrder", "lineOrder", std::string(1, '\0'));
+    attr("pixelAspectRatio", "float", ints({0x3f800000}));
+    attr("screenWindowCenter", "v2f", ints({0, 0}));
+    attr("screenWindowWidth", "float", ints({0x3f800000}));
+    s += '\0';
+    const uint64_t end = s.size() + 8ull * uint64_t(h);
+    for (int y = 0; y < h; ++y) s.append(reinterpret_cast<const char*>(&end), 8);
+    return s;
+}
+
+}  // namespace
+
+TEST_F(ImageIO, AbsurdSizeIsRefusedBeforeAllocating) {
+    const std::string p = file("huge.exr");
+    std::ofstream(p, std::ios::binary) << hugeExrHeader(20000, 20000);  // 4e8 > 2^28 pixels
+    try {
+        readImage(p);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(p), std::string::npos) << msg;
+        EXPECT_NE(msg.find("2^28"), std::string::npos) << msg;
+    }
+}
