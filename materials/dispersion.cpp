@@ -202,3 +202,19 @@ IOR readIOR(const Properties& p, const std::string& prefix, const std::string& d
 }
 
 }  // namespace iris
+
+namespace iris {
+
+float relativeIOR(const IOR& intIOR, const IOR& extIOR, SampledWavelengths& wl, SampledSpectrum* eta) {
+    *eta = intIOR.sample(wl) / extIOR.sample(wl);
+    const bool varies = [&] {
+        for (int i = 1; i < eta->size(); ++i)
+            if ((*eta)[i] != (*eta)[0]) return true;
+        return false;
+    }();
+    if (wl.isRGB()) return (*eta)[1];
+    if (varies) wl.terminateSecondary();
+    return (*eta)[0];
+}
+
+}  // namespace iris

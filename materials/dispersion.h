@@ -57,3 +57,13 @@ std::vector<std::string> iorPresetNames();
 IOR readIOR(const Properties& p, const std::string& prefix, const std::string& def);
 
 }  // namespace iris
+
+namespace iris {
+
+/// The relative index η_int/η_ext of a dielectric interface at the path's wavelengths, written
+/// to *eta. When it varies with λ in spectral mode the secondary wavelengths are terminated
+/// (wl.terminateSecondary(), pbrt-v4 §9.5.2). Returns the η that decides refracted directions:
+/// the hero wavelength's (index 0) in spectral mode, the green channel's (index 1) in RGB mode.
+float relativeIOR(const IOR& intIOR, const IOR& extIOR, SampledWavelengths& wl, SampledSpectrum* eta);
+
+}  // namespace iris

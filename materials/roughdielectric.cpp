@@ -1,0 +1,141 @@
+// Rough dielectric interface: microfacet reflection and refraction of Walter, Marschner, Li and
+// Torrance 2007 ("Microfacet Models for Refraction through Rough Surfaces"), thesis 000 §2.3.2:
+//   f_r = F D G / (4 |cosθi cosθo|)                                          (thesis eq. 2.6)
+//   f_t = |wi·m||wo·m| / (|cosθi||cosθo|) · η_o² (1 − F) G D / (η_i (wi·m) + η_o (wo·m))²
+//                                                          (Walter eq. 21, thesis eqs. 2.15–2.16)
+// with the generalised half vector m ∝ −(η_i wi + η_o wo) (Walter eq. 16); here η_o is the index
+// on the viewer's (wo) side, which makes f_t the radiance BTDF; Importance mode uses η_i² instead.
+// Sampling (Walter §5.3, thesis eqs. 2.19–2.22): m from the (visible) normal distribution, then
+// reflection with probability F(wo·m) else refraction; pdf = pm(m) · {F/(4|wo·m|) ,
+// (1−F) η_i²|wi·m| / (η_o (wo·m) + η_i (wi·m))²} (Walter eqs. 14, 17).
+// Mitsuba 3 plugin "roughdielectric": distribution ("beckmann"), alpha (0.1), alpha_u/alpha_v,
+// sample_visible (true), int_ior ("bk7"), ext_ior ("air"), specular_reflectance,
+// specular_transmittance (1); plus masking / beckmann_rational_g1 (materials/microfacet.h).
+// Wavelength dependence as in "dielectric": one η (hero or green channel) decides m and the
+// Jacobians; the Fresnel factor uses each channel's own η.
+#include "core/registry.h"
+#include "materials/dispersion.h"
+#include "materials/fresnel.h"
+#include "materials/material.h"
+#include "materials/microfacet.h"
+
+namespace iris {
+namespace {
+
+class RoughDielectricBSDF final : public BSDF {
+public:
+    RoughDielectricBSDF(const MicrofacetDistribution& d, const SampledSpectrum& eta, float etaDir,
+                        const SampledSpectrum& r, const SampledSpectrum& t)
+        : d_(d), eta_(eta), etaDir_(etaDir), r_(r), t_(t) {}
+
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        const int n = r_.size();
+        Geometry g;
+        if (!geometry(wo, wi, &g)) return SampledSpectrum(n);
+        const float D = d_.D(g.m);
+        if (D == 0) return SampledSpectrum(n);
+        const float G = d_.G(wi, wo, g.m);
+        const SampledSpectrum F = fresnelDielectric(g.dotO, eta_);
+        if (g.reflect) return F * r_ * (D * G / (4.0f * std::abs(wi.z * wo.z)));
+        // Walter eq. 21 with η_o (viewer side) = 1 and η_i = etaW relative to it.
+        float v = D * G * std::abs(g.dotO * g.dotI) / (std::abs(wi.z * wo.z) * sqr(g.dotO + g.etaW * g.dotI));
+        if (mode == TransportMode::Importance) v *= sqr(g.etaW);
+        return (1.0f - F) * t_ * v;
+    }
+
+    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
+        Geometry g;
+        if (!geometry(wo, wi, &g)) return 0.0f;
+        const float pm = d_.pdf(wo, g.m);
+        const float R = fresnelDielectric(g.dotO, etaDir_);
+        if (g.reflect) return R * pm / (4.0f * std::abs(g.dotO));
+        return (1.0f - R) * pm * sqr(g.etaW) * std::abs(g.dotI) / sqr(g.dotO + g.etaW * g.dotI);
+    }
+
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z == 0) return std::nullopt;
+        const vec3 m = d_.sampleNormal(wo, u);  // m.z > 0
+        const float dotO = glm::dot(wo, m);
+        if (dotO * wo.z <= 0) return std::nullopt;  // back-facing microfacet (all-normals sampling)
+        const FresnelDielectricResult fr = fresnelDielectricFull(dotO, etaDir_);
+        BSDFSample s;
+        if (uc < fr.R) {
+            s.wi = reflect(wo, m);
+            if (s.wi.z * wo.z <= 0) return std::nullopt;
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {
+            s.wi = glm::normalize(refract(wo, m, fr.cosThetaT, fr.etaTI));
+            if (s.wi.z * wo.z >= 0) return std::nullopt;
+            s.flags = kBSDFTransmission | kBSDFGlossy;
+            s.eta = fr.etaIT;
+        }
+        s.pdf = pdf(wo, s.wi, mode);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(wo, s.wi, mode);
+        return s;
+    }
+
+    uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFGlossy; }
+
+private:
+    struct Geometry {
+        vec3 m;
+        float dotO, dotI, etaW;
+        bool reflect;
+    };
+    /// The (generalised) half vector of (wo, wi), oriented to +z, and the side checks.
+    bool geometry(const vec3& wo, const vec3& wi, Geometry* g) const {
+        if (wo.z == 0 || wi.z == 0) return false;
+        g->reflect = wo.z * wi.z > 0;
+        // η of wi's side relative to wo's side.
+        g->etaW = g->reflect ? 1.0f : (wo.z > 0 ? etaDir_ : 1.0f / etaDir_);
+        vec3 m = wo + wi * g->etaW;  // Walter eq. 16 (reflection: eq. 13)
+        const float len = glm::length(m);
+        if (!(len > 0)) return false;
+        m /= len;
+        if (m.z < 0) m = -m;
+        if (m.z == 0) return false;
+        g->m = m;
+        g->dotO = glm::dot(wo, m);
+        g->dotI = glm::dot(wi, m);
+        // Both directions must see the front of the microfacet on their own side.
+        if (g->dotO * wo.z <= 0 || g->dotI * wi.z <= 0) return false;
+        return true;
+    }
+
+    MicrofacetDistribution d_;
+    SampledSpectrum eta_;
+    float etaDir_;
+    SampledSpectrum r_, t_;
+};
+
+class RoughDielectricMaterial final : public Material {
+public:
+    RoughDielectricMaterial(MicrofacetParams mp, IOR in, IOR ext, SpectrumTexturePtr r, SpectrumTexturePtr t)
+        : mp_(std::move(mp)), in_(std::move(in)), ext_(std::move(ext)), r_(std::move(r)), t_(std::move(t)) {}
+    const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        SampledSpectrum eta;
+        const float etaDir = relativeIOR(in_, ext_, wl, &eta);
+        return arena.make<RoughDielectricBSDF>(mp_.at(sp.tex), eta, etaDir, r_->eval(sp.tex, wl), t_->eval(sp.tex, wl));
+    }
+
+private:
+    MicrofacetParams mp_;
+    IOR in_, ext_;
+    SpectrumTexturePtr r_, t_;
+};
+
+std::shared_ptr<Material> createRoughDielectric(const Properties& p) {
+    MicrofacetParams mp = MicrofacetParams::read(p, "beckmann", 0.1f);
+    IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
+    return std::make_shared<RoughDielectricMaterial>(
+        std::move(mp), std::move(in), std::move(ext),
+        p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
+        p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
+}
+
+}  // namespace
+
+IRIS_REGISTER(MaterialRegistry, "roughdielectric", createRoughDielectric);
+
+}  // namespace iris

@@ -1,0 +1,76 @@
+// Thin dielectric sheet (Mitsuba 3 plugin "thindielectric"): a slab whose two interfaces are
+// parallel and close together, so light either reflects or passes straight through (no
+// refraction offset). Summing the internal bounces (geometric series) gives
+//   R' = R + T² R / (1 − R²),  T' = 1 − R'   (R = single-interface Fresnel, T = 1 − R).
+// Parameters: int_ior ("bk7"), ext_ior ("air"), specular_reflectance, specular_transmittance (1).
+// The lobe is chosen with the mean of R' over the wavelengths; no wavelength termination is
+// needed since directions do not depend on η.
+#include "core/registry.h"
+#include "materials/dispersion.h"
+#include "materials/fresnel.h"
+#include "materials/material.h"
+
+namespace iris {
+namespace {
+
+class ThinDielectricBSDF final : public BSDF {
+public:
+    ThinDielectricBSDF(const SampledSpectrum& eta, const SampledSpectrum& r, const SampledSpectrum& t)
+        : eta_(eta), r_(r), t_(t) {}
+
+    SampledSpectrum eval(const vec3&, const vec3&, TransportMode) const override { return SampledSpectrum(r_.size()); }
+    float pdf(const vec3&, const vec3&, TransportMode) const override { return 0.0f; }
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2&, TransportMode) const override {
+        if (wo.z == 0) return std::nullopt;
+        SampledSpectrum R = fresnelDielectric(std::abs(wo.z), eta_);
+        for (int i = 0; i < R.size(); ++i) {
+            const float r = R[i], t = 1.0f - r;
+            R[i] = r < 1.0f ? r + t * t * r / (1.0f - r * r) : 1.0f;  // R' = R + T²R/(1 − R²)
+        }
+        const float pR = std::clamp(R.average(), 0.0f, 1.0f);
+        BSDFSample s;
+        if (uc < pR) {
+            s.wi = reflectLocal(wo);
+            s.pdf = pR;
+            s.f = R * r_ / std::abs(wo.z);
+            s.flags = kBSDFReflection | kBSDFSpecular;
+        } else {
+            s.wi = -wo;
+            s.pdf = 1.0f - pR;
+            s.f = (1.0f - R) * t_ / std::abs(wo.z);
+            s.flags = kBSDFTransmission | kBSDFSpecular;
+        }
+        return s;
+    }
+    uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFSpecular; }
+
+private:
+    SampledSpectrum eta_, r_, t_;
+};
+
+class ThinDielectricMaterial final : public Material {
+public:
+    ThinDielectricMaterial(IOR in, IOR ext, SpectrumTexturePtr r, SpectrumTexturePtr t)
+        : in_(std::move(in)), ext_(std::move(ext)), r_(std::move(r)), t_(std::move(t)) {}
+    const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        const SampledSpectrum eta = in_.sample(wl) / ext_.sample(wl);
+        return arena.make<ThinDielectricBSDF>(eta, r_->eval(sp.tex, wl), t_->eval(sp.tex, wl));
+    }
+
+private:
+    IOR in_, ext_;
+    SpectrumTexturePtr r_, t_;
+};
+
+std::shared_ptr<Material> createThinDielectric(const Properties& p) {
+    IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
+    return std::make_shared<ThinDielectricMaterial>(
+        std::move(in), std::move(ext), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
+        p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
+}
+
+}  // namespace
+
+IRIS_REGISTER(MaterialRegistry, "thindielectric", createThinDielectric);
+
+}  // namespace iris
