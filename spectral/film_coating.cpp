@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "materials/belcour_barla.h"
+#include "materials/conductor_presets.h"
 
 namespace iris {
 
@@ -94,7 +95,20 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
     }
     s.substrateEta = IorSpec::fromProperties(p, etaName, defSubstrateEta);
     checkPositive(p, etaName, s.substrateEta, false);
-    if (kName) {
+    if (kName && p.has("substrate_material")) {
+        if (p.has(etaName) || p.has(kName))
+            failAt(p.locationOf("substrate_material"), "give either substrate_material or ", etaName, "/", kName, ", not both");
+        const std::string name = p.getString("substrate_material");
+        ConductorSpectra c;
+        try {
+            c = loadConductorPreset(name);
+        } catch (const Error& e) {
+            failAt(p.locationOf("substrate_material"), e.what());
+        }
+        if (c.mirror()) failAt(p.locationOf("substrate_material"), "substrate_material 'none' (perfect mirror) has no index");
+        s.substrateEta = IorSpec(c.eta);
+        s.substrateK = IorSpec(c.k);
+    } else if (kName) {
         s.substrateK = IorSpec::fromProperties(p, kName, defSubstrateK);
         checkPositive(p, kName, s.substrateK, true);
     } else {

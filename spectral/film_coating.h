@@ -24,6 +24,7 @@ class IorSpec {
 public:
     IorSpec() = default;
     explicit IorSpec(float c) : values_(c) {}
+    explicit IorSpec(SpectrumPtr s) : spectrum_(std::move(s)) {}
     /// Read `name` (float, rgb triple or spectrum) from p; `def` when absent.
     static IorSpec fromProperties(const Properties& p, const std::string& name, float def,
                                   const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
@@ -61,6 +62,7 @@ struct FilmCoatingSpec {
     /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
     /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
     /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0).
+    /// With a kName, `substrate_material` may instead name a conductor preset (conductor_presets.h).
     static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                           float defThickness = 300.0f, const char* etaName = "substrate_eta",
                                           const char* kName = "substrate_k");

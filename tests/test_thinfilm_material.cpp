@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "materials/belcour_barla.h"
+#include "materials/conductor_presets.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
 #include "spectral/cie.h"
@@ -338,4 +339,17 @@ TEST(IridescentDiffuse, ZeroThicknessIsSmoothPlastic) {
         ASSERT_TRUE(s && s->isSpecular());
         EXPECT_NEAR(s->f[0] * co, fresnelDielectric(co, eta), 1e-6);
     }
+}
+
+TEST(ThinFilmMaterial, NamedConductorSubstrate) {
+    const SampledWavelengths wl = spectralWl(0.42f, 5);
+    const ConductorSpectra au = loadConductorPreset("Au");
+    auto inst = makeBSDF("thinfilm", {{"substrate_material", S("Au")}, {"thickness", 150.0f}, {"film_ior", 1.4f}}, wl);
+    const SampledSpectrum f = inst.bsdf->sample(dirFromCos(0.9f), 0.5f, vec2(0.5f), TransportMode::Radiance)->weight();
+    for (int k = 0; k < wl.size(); ++k) {
+        const complexd sub(au.eta->eval(wl.lambda(k)), au.k->eval(wl.lambda(k)));
+        EXPECT_NEAR(f[k], airySingleFilm(wl.lambda(k), 0.9f, 1.0, Layer{1.4f, 150.0}, sub).R(), 2e-6);
+    }
+    EXPECT_THROW(makeBSDF("thinfilm", {{"substrate_material", S("unobtainium")}}), Error);
+    EXPECT_THROW(makeBSDF("thinfilm", {{"substrate_material", S("Au")}, {"substrate_eta", 0.2f}}), Error);
 }
