@@ -109,12 +109,13 @@ int levenbergMarquardt(const Model& m, const dvec3& target, double c[3], double 
     return it;
 }
 
-bool converged(const Model& m, const dvec3& target, const double c[3], double tol) {
+// Largest component error |RGB(c) − target|.
+double residual(const Model& m, const dvec3& target, const double c[3]) {
     dvec3 rgb;
     double J[3][3];
     m.eval(c, rgb, J);
     const dvec3 d = glm::abs(rgb - target);
-    return std::max({d.x, d.y, d.z}) <= tol;
+    return std::max({d.x, d.y, d.z});
 }
 
 }  // namespace
@@ -122,25 +123,25 @@ bool converged(const Model& m, const dvec3& target, const double c[3], double to
 SigmoidFit fitSigmoidPolynomial(const vec3& rgbIn) {
     const dvec3 target = glm::clamp(dvec3(rgbIn), 0.0, 1.0);
     const Model model;
-    double c[3] = {0.0, 0.0, 0.0};  // s = ½: mid-grey
-    // Continuation from the grey of the same luminance-ish level towards the target: the fit is
-    // easy near grey, and each stage warm-starts the next (cf. Jakob & Hanika 2019, §4).
+    // Start from the grey g of the same mean level: s = const = g, i.e. c = (0, 0, S⁻¹(g)) with
+    // S⁻¹(g) = (2g − 1) / (2√(g(1 − g))).
     const double grey = std::clamp((target.x + target.y + target.z) / 3.0, 1e-3, 1.0 - 1e-3);
-    // Start: the grey level g has s = const = g, i.e. x = S⁻¹(g) = (2g − 1) / (2√(g(1 − g))).
-    c[2] = (2.0 * grey - 1.0) / (2.0 * std::sqrt(grey * (1.0 - grey)));
-    const double c2Grey = c[2];
+    const double c2Grey = (2.0 * grey - 1.0) / (2.0 * std::sqrt(grey * (1.0 - grey)));
+    double c[3] = {0.0, 0.0, c2Grey};
     // First try the target directly; if that stalls (strongly saturated colours), restart with a
-    // continuation in 8 stages from the grey, each warm-starting the next.
+    // continuation in 8 stages from the grey to the target, each warm-starting the next (the paper
+    // builds its table the same way, §4), and keep the better of the two.
     int iterations = levenbergMarquardt(model, target, c, 1e-9, 60);
-    if (!converged(model, target, c, 1e-6)) {
-        c[0] = c[1] = 0.0;
-        c[2] = c2Grey;
+    if (residual(model, target, c) > 1e-6) {
+        double cc[3] = {0.0, 0.0, c2Grey};
         const int stages = 8;
         for (int k = 1; k <= stages; ++k) {
             const double a = double(k) / stages;
             const dvec3 t = (1.0 - a) * dvec3(grey) + a * target;
-            iterations += levenbergMarquardt(model, t, c, k == stages ? 1e-9 : 1e-4, k == stages ? 300 : 50);
+            iterations += levenbergMarquardt(model, t, cc, k == stages ? 1e-9 : 1e-4, k == stages ? 300 : 50);
         }
+        if (residual(model, target, cc) < residual(model, target, c))
+            for (int k = 0; k < 3; ++k) c[k] = cc[k];
     }
     SigmoidFit fit;
     fit.poly = SigmoidPolynomial{float(c[0]), float(c[1]), float(c[2])};
