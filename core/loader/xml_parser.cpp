@@ -376,14 +376,18 @@ private:
         for (const PendingRef& r : pending_) {
             const auto it = ids_.find(r.id);
             if (it == ids_.end()) failAt(r.loc, "<ref>: unknown id '", r.id, "'");
-            if (!r.name.empty()) r.owner->set(r.name, it->second, r.loc);
-            else r.owner->addChild(it->second);
             edges_[r.owner.get()].push_back(it->second.get());
             refLocations_.emplace(std::make_pair(r.owner.get(), it->second.get()), r.loc);
         }
-        // A reference to an enclosing object would make object creation recurse forever.
+        // A reference to an enclosing object would make object creation recurse forever (and the
+        // shared pointers leak): check before linking anything.
         std::map<const Properties*, int> state;  // 1 = on the current path, 2 = done
         for (const auto& [node, out] : edges_) findCycle(node, state);
+        for (const PendingRef& r : pending_) {
+            const PropertiesPtr& target = ids_.at(r.id);
+            if (!r.name.empty()) r.owner->set(r.name, target, r.loc);
+            else r.owner->addChild(target);
+        }
     }
 
     void findCycle(const Properties* node, std::map<const Properties*, int>& state) const {
