@@ -22,6 +22,10 @@ RENDER_OPTIONS = {
 }
 
 
+# Axis names that only label a group of settings (see Sweep) and are not passed to render.
+VARIANT_AXES = {"variant"}
+
+
 def format_value(value) -> str:
     """Text form of a setting: lists/tuples as comma-separated values, floats without noise."""
     if isinstance(value, (list, tuple)):
@@ -53,6 +57,8 @@ class Job:
 @dataclass
 class Sweep:
     """`axes` values are swept (cartesian product, in insertion order); `fixed` apply to every job.
+    An axis value may be a dict {"name": label, setting: value, ...}: its settings are applied
+    together and the axis itself records the label (a "variant" axis, not passed to render).
 
     scenes: {label: scene path}. Output: <out_dir>/renders/<sweep>/<label>/<axis=value>_... .exr"""
     name: str
@@ -74,10 +80,15 @@ class Sweep:
             for point in self.points():
                 settings = dict(self.fixed)
                 settings.update(self.per_scene.get(label, {}))
-                settings.update(point)
+                for key, value in point.items():
+                    if isinstance(value, dict):  # a named group of settings: {"name": ..., setting: value}
+                        settings.update({k: v for k, v in value.items() if k != "name"})
+                        settings[key] = value["name"]
+                    else:
+                        settings[key] = value
                 for src, dst in self.linked.items():
                     settings[dst] = settings[src]
-                stem = "_".join(f"{slug(k)}={slug(format_value(v))}" for k, v in point.items()) or "default"
+                stem = "_".join(f"{slug(k)}={slug(format_value(settings[k]))}" for k in point) or "default"
                 output = Path(out_dir) / "renders" / slug(self.name) / slug(label) / f"{stem}.exr"
                 out.append(Job(index, self.name, scene, label, settings, output,
                                render_command(render, scene, output, settings, quiet)))
@@ -89,7 +100,7 @@ def render_command(render: Path, scene: str, output: Path, settings: dict, quiet
     """The render command line for one job (see apps/render.cpp --help)."""
     cmd = [str(render), str(scene), "-o", str(output)]
     for key, value in settings.items():
-        if key.startswith("_") or value is None:
+        if key.startswith("_") or key in VARIANT_AXES or value is None:
             continue  # private annotations and unset options
         if key in RENDER_OPTIONS:
             cmd += [RENDER_OPTIONS[key], format_value(value)]

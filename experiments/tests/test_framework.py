@@ -81,6 +81,15 @@ class SweepTest(TempDirTest):
         self.assertNotIn("res=32", jobs[4].command)  # per-scene setting only for "tf"
         self.assertEqual(jobs[4].label, "other")
 
+    def test_variant_axis_applies_its_settings_together(self):
+        s = Sweep("v", {"a": "s.xml"}, axes={"variant": [{"name": "two_beam", "phase_mode": "truncated", "bounces": 1},
+                                                          {"name": "exact", "phase_mode": "exact"}]})
+        jobs = s.jobs(self.tmp, Path("render"))
+        self.assertEqual([j.output.name for j in jobs], ["variant=two_beam.exr", "variant=exact.exr"])
+        self.assertEqual(jobs[0].settings["variant"], "two_beam")
+        self.assertEqual(jobs[0].command[-5:], ["-D", "phase_mode=truncated", "-D", "bounces=1", "--quiet"])
+        self.assertNotIn("variant=two_beam", " ".join(jobs[0].command[4:]))
+
     def test_tuples_linked_values_and_duplicates(self):
         s = Sweep("w", {"a": "s.xml"}, axes={"wavelengths": [(680, 520, 400)]}, fixed={"mode": "rgb"},
                   linked={"wavelengths": "rgb_wavelengths"})
@@ -268,14 +277,15 @@ class ExperimentEndToEndTest(TempDirTest):
     def test_per_bounce_phase_without_real_difference_has_zero_excess(self):
         # The fake renderer ignores phase_model: both variants are the same image, so the measured
         # difference must equal the noise floor exactly.
-        text = SCENE_XML.replace('<default name="offset"', '<default name="phase_model" value="once"/>\n'
-                                 '    <default name="offset"')
+        text = SCENE_XML.replace('<default name="offset"', '<default name="phase_mode" value="exact"/>\n'
+                                 '    <default name="bounces" value="1"/>\n    <default name="offset"')
         out, _ = self.run_experiment("per_bounce_phase", scene_text=text)
         rows = collect.read_csv(out / "results.csv")
-        self.assertEqual(len(rows), 5)
+        self.assertEqual(len(rows), 4 * 5)  # variants x thicknesses
         for r in rows:
             self.assertEqual(float(r["excess_de00_mean"]), 0.0)
-        self.assertIn("just-noticeable ΔE00 = 1: none.", (out / "report.md").read_text())
+        report_text = (out / "report.md").read_text()
+        self.assertEqual(report_text.count("just-noticeable ΔE00 = 1: none."), 3)  # every variant but exact
 
     def test_slurm_and_dry_run_modes_do_not_render(self):
         out, stdout = self.run_experiment("approximation_error", ["--slurm"])
