@@ -177,6 +177,11 @@ TEST(MeshReaders, PlyErrors) {
                               "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n4 0 1 2 9\n2 7 8\n";
     expectError([&] { parsePly(range, "range.ply"); }, {"range.ply", "out of range"});
     expectError([] { readPly(tempPath("missing.ply")); }, {"missing.ply", "cannot open"});
+    // An element without properties stores nothing, whatever its count (no endless loop).
+    const std::string empty = "ply\nformat ascii 1.0\nelement junk 18446744073709551615\nelement vertex 3\nproperty float x\n"
+                              "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    EXPECT_EQ(parsePly(empty, "junk.ply").triangleCount(), 1u);
 }
 
 namespace {
@@ -259,6 +264,25 @@ TEST(MeshReaders, SerializedCorruptInput) {
     put<uint64_t>(absurd, 0);
     put<uint32_t>(absurd, 1);
     expectError([&] { readSerialized(writeFile("absurd.serialized", absurd), 0); }, {"absurd.serialized", "absurd"});
+    // Plausible counts but a stream that ends early: "truncated", without allocating the claim.
+    std::string shortRaw;
+    put<uint32_t>(shortRaw, 0x1000);
+    shortRaw += std::string("y") + '\0';
+    put<uint64_t>(shortRaw, 1000);
+    put<uint64_t>(shortRaw, 1000);
+    for (int i = 0; i < 30; ++i) put<float>(shortRaw, float(i));
+    len = compressBound(uLong(shortRaw.size()));
+    z.assign(len, '\0');
+    compress(reinterpret_cast<Bytef*>(z.data()), &len, reinterpret_cast<const Bytef*>(shortRaw.data()), uLong(shortRaw.size()));
+    z.resize(len);
+    std::string shortFile;
+    put<uint16_t>(shortFile, 0x041C);
+    put<uint16_t>(shortFile, 4);
+    shortFile += z;
+    for (int i = 0; i < 200; ++i) shortFile += char(0);  // padding after the stream
+    put<uint64_t>(shortFile, 0);
+    put<uint32_t>(shortFile, 1);
+    expectError([&] { readSerialized(writeFile("short.serialized", shortFile), 0); }, {"short.serialized", "truncated"});
     // Corrupt compressed bytes.
     std::string garbled = good;
     for (size_t i = 6; i < 14; ++i) garbled[i] = char(0xA5);

@@ -210,6 +210,7 @@ private:
     }
 
     void skipElement(const Element& e) {
+        if (e.props.empty()) return;  // nothing stored, whatever the count says
         for (uint64_t i = 0; i < e.count; ++i)
             for (const Property& p : e.props) skipProperty(p);
     }

@@ -11,6 +11,8 @@
 namespace iris {
 namespace {
 
+static_assert(sizeof(vec3) == 3 * sizeof(float) && sizeof(vec2) == 2 * sizeof(float), "packed GLM vectors");
+
 constexpr uint16_t kMagic = 0x041C;
 constexpr uint32_t kHasNormals = 0x0001, kHasUVs = 0x0002, kHasColors = 0x0008, kFaceNormals = 0x0010,
                    kDouble = 0x2000;
@@ -102,16 +104,33 @@ private:
     std::string path_;
 };
 
+/// Read `count` items in bounded chunks, so that memory grows only with data actually present
+/// (a truncated stream fails before a huge claimed count is allocated).
+template <typename T>
+void readChunked(Inflater& in, std::vector<T>& out, uint64_t count) {
+    constexpr uint64_t kChunk = uint64_t(1) << 20;
+    out.clear();
+    for (uint64_t done = 0; done < count;) {
+        const uint64_t n = std::min(kChunk, count - done);
+        out.resize(size_t(done + n));
+        in.read(out.data() + done, size_t(n) * sizeof(T));
+        done += n;
+    }
+}
+
 template <typename Vec, int N>
 void readVectors(Inflater& in, std::vector<Vec>& out, uint64_t count, bool dbl) {
-    out.resize(size_t(count));
     if (dbl) {
-        std::vector<double> tmp(size_t(count) * N);
-        in.read(tmp.data(), tmp.size() * sizeof(double));
+        std::vector<double> tmp;
+        readChunked(in, tmp, count * N);
+        out.resize(size_t(count));
         for (size_t i = 0; i < count; ++i)
             for (int k = 0; k < N; ++k) out[i][k] = float(tmp[i * N + size_t(k)]);
     } else {
-        in.read(out.data(), size_t(count) * N * sizeof(float));
+        std::vector<float> tmp;
+        readChunked(in, tmp, count * N);
+        out.resize(size_t(count));
+        std::memcpy(out.data(), tmp.data(), tmp.size() * sizeof(float));
     }
 }
 
@@ -167,8 +186,7 @@ SerializedMesh readSerialized(const std::string& path, int shapeIndex) {
         std::vector<vec3> colors;
         readVectors<vec3, 3>(in, colors, nv, dbl);
     }
-    m.indices.resize(size_t(nt) * 3);
-    in.read(m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    readChunked(in, m.indices, nt * 3);
     out.faceNormals = (flags & kFaceNormals) != 0;
     m.validate();
     return out;
