@@ -17,8 +17,8 @@ from iris_experiments.sweep import Sweep  # noqa: E402
 
 # ---- definition (edit here) -----------------------------------------------------------------
 SCENES = {
-    "thin_film": SceneSpec("scenes/thin_film_spheres.xml", materials=("thinfilm",),
-                           note="spheres with the spectral thin-film material, being written"),
+    "thin_film": SceneSpec("scenes/thinfilm_spheres.xml", materials=("thinfilm", "iridescent_diffuse"),
+                           note="spheres with the spectral thin-film materials"),
 }
 SPECTRAL_SAMPLES = [1, 2, 4, 8, 16, 32]
 FULL = {"spp": 256, "ref_spp": 1024, "ref_seeds": 4, "ref_samples": 8}

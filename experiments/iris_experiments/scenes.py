@@ -3,7 +3,6 @@ experiment fails at once with a clear message instead of after hours of renderin
 from __future__ import annotations
 
 import re
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,18 +34,32 @@ def registered_plugins(repo: Path = REPO) -> dict:
     return found
 
 
+def _scene_text(path: Path) -> str:
+    """The scene without comments. Scanned with patterns rather than a strict XML parser, because
+    the renderer's parser (pugixml) accepts what strict XML rejects, e.g. "--" inside comments."""
+    try:
+        text = Path(path).read_text(errors="replace")
+    except OSError as e:
+        raise ExperimentError(f"{path}: {e.strerror}") from e
+    return re.sub(r"<!--.*?-->", "", text, flags=re.S)
+
+
+def _attr_values(text: str, tag: str, attr: str) -> set:
+    values = set()
+    for m in re.finditer(rf"<{tag}\b([^>]*)>", text):
+        a = re.search(rf"\b{attr}\s*=\s*(\"([^\"]*)\"|'([^']*)')", m.group(1))
+        if a:
+            values.add(a.group(2) if a.group(2) is not None else a.group(3))
+    return values
+
+
 def scene_defaults(path: Path) -> set:
     """Names of the <default name="..."/> parameters declared by a scene file."""
-    try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError as e:
-        raise ExperimentError(f"{path}: not valid XML ({e})") from e
-    return {el.get("name") for el in root.iter("default") if el.get("name")}
+    return _attr_values(_scene_text(path), "default", "name")
 
 
 def scene_bsdf_types(path: Path) -> set:
-    root = ET.parse(path).getroot()
-    return {el.get("type") for el in root.iter("bsdf") if el.get("type")}
+    return _attr_values(_scene_text(path), "bsdf", "type")
 
 
 def check_scenes(specs, repo: Path = REPO, plugins: dict | None = None) -> None:
