@@ -1,6 +1,7 @@
 // phong, cook_torrance and twosided through the shared BSDF harness.
 #include <gtest/gtest.h>
 
+#include "core/rng.h"
 #include "materials/fresnel.h"
 #include "tests/bsdf_test_util.h"
 
@@ -122,4 +123,47 @@ TEST(MaterialsTwoSided, FrontAndBack) {
     auto named = makeProps("twosided", {{"bsdf", makeProps("diffuse", {{"reflectance", 0.3f}})}});
     auto n = makeBSDF(*named, SampledWavelengths::rgb(vec3(645, 525, 445)));
     EXPECT_NEAR(albedo(*n.bsdf, dirFromCos(-0.5f), 1000)[0].mean, 0.3, 1e-5);
+}
+
+TEST(MaterialsAll, SpectralAndRGBModes) {
+    // Every core material works with any number of wavelengths and in RGB mode: finite,
+    // non-negative weights, and (non-specular ones) chi-square + consistency at one angle.
+    const std::vector<std::pair<std::string, std::shared_ptr<Properties>>> mats = {
+        {"phong", makeProps("phong", {{"exponent", 20.0f}})},
+        {"cook_torrance", makeProps("cook_torrance", {{"roughness", 0.3f}})},
+        {"conductor", makeProps("conductor", {{"material", std::string("Au")}})},
+        {"roughconductor", makeProps("roughconductor", {{"material", std::string("Cu")}, {"alpha", 0.3f}})},
+        {"dielectric", makeProps("dielectric", {{"int_sellmeier_b", VectorValue{vec3(1.03961212f, 0.231792344f, 1.01046945f)}},
+                                                {"int_sellmeier_c", VectorValue{vec3(0.00600069867f, 0.0200179144f, 103.560653f)}}})},
+        {"roughdielectric", makeProps("roughdielectric", {{"int_cauchy_a", 1.5f}, {"int_cauchy_b", 0.004f}, {"alpha", 0.3f},
+                                                          {"distribution", std::string("ggx")}})},
+        {"thindielectric", makeProps("thindielectric", {{"int_ior", std::string("pyrex")}})},
+    };
+    Chi2Options opt;
+    opt.samples = 200000;
+    opt.numTests = int(mats.size()) * 3;
+    for (const auto& [name, props] : mats) {
+        for (int n : {0, 1, 8}) {
+            const SampledWavelengths wl = n == 0 ? SampledWavelengths::rgb(vec3(645, 525, 445)) : SampledWavelengths::sampleVisible(0.61f, n);
+            auto inst = makeBSDF(*props, wl);
+            ASSERT_NE(inst.bsdf, nullptr) << name;
+            const vec3 wo = dirFromCos(0.6f, 0.3f);
+            Sampler rng(5, 6, 7);
+            for (int i = 0; i < 2000; ++i) {
+                const float uc = rng.get1D();
+                const auto s = inst.bsdf->sample(wo, uc, rng.get2D(), TransportMode::Radiance);
+                if (!s) continue;
+                ASSERT_EQ(s->f.size(), wl.size()) << name;
+                ASSERT_FALSE(s->f.hasNonFinite()) << name << " n " << n;
+                ASSERT_FALSE(s->f.hasNegative()) << name << " n " << n;
+            }
+            if (inst.bsdf->hasNonSpecular()) {
+                const auto r = chi2Test(*inst.bsdf, wo, opt);
+                EXPECT_TRUE(r.passed) << name << " n " << n << ": " << r.message;
+                const auto k = checkConsistency(*inst.bsdf, wo, 3000);
+                EXPECT_LT(k.maxRelErrF, 1e-3f) << name << " n " << n << ": " << k.message;
+                EXPECT_LT(k.maxRelErrPdf, 1e-3f) << name << " n " << n << ": " << k.message;
+            }
+        }
+    }
 }
