@@ -9,7 +9,8 @@
 //              replaced by the stack's transmittance T (film absorption included, T reciprocal)
 //              and the internal reflectance of the binder side replaced by the stack's
 //              hemispherical reflectance from below r_int (FilmCoating::
-//              internalHemisphericalReflectance, Gauss–Legendre quadrature per wavelength).
+//              internalHemisphericalReflectance, Gauss–Legendre quadrature per wavelength;
+//              tabulated at construction for a constant thickness, see FilmCoatingSpec::RintCache).
 //              The internal bounces between base and film are summed incoherently (the binder is
 //              thick), the 1/η² accounts for the radiance compression inside the binder.
 // For the rough coat the diffuse term uses the same macro-surface T and r_int (the smooth-coat
@@ -150,7 +151,7 @@ private:
 
 std::shared_ptr<Material> createIridescentDiffuse(const Properties& p) {
     FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
-    if (spec.extIor <= 0) failAt(p.location(), "ext_ior must be > 0");
+    if (p.getBool("cache_internal_reflectance", true)) spec.precomputeInternalReflectance();
     SpectrumTexturePtr rho = p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f);
     const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
     const float alpha = p.getFloat("alpha", 0.0f);

@@ -150,17 +150,37 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
       belcourBarla_(wl.isRGB() && spec.rgbMode == FilmRGBMode::BelcourBarla),
       extIor_(spec.extIor),
       thickness_(std::max(0.0f, spec.thickness->eval(q))) {
+    rgb_ = wl.isRGB();
+    if (spec.rintCache) {
+        const vec3& l = spec.rintCache->rgbLambdas;
+        if (!rgb_ || (wl.lambda(0) == l[0] && wl.lambda(1) == l[1] && wl.lambda(2) == l[2])) rint_ = spec.rintCache.get();
+    }
+    init(spec, arena, [&](const IorSpec& s, int k) { return s.sample(wl, k); }, [&](int k) { return wl.lambda(k); });
+}
+
+FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena)
+    : n_(n),
+      nExtra_(int(spec.extra.size())),
+      bounces_(spec.bounces),
+      mode_(spec.mode),
+      extIor_(spec.extIor),
+      thickness_(std::max(0.0f, spec.thickness->eval(q))) {
+    init(spec, arena, [&](const IorSpec& s, int k) { return s.at(lambdas[k]); }, [&](int k) { return lambdas[k]; });
+}
+
+template <typename IorAt, typename LambdaAt>
+void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda) {
     const int stride = 1 + nExtra_;
     layers_ = static_cast<Layer*>(arena.allocate(sizeof(Layer) * n_ * stride, alignof(Layer)));
     for (int k = 0; k < n_; ++k) {
-        lambda_[k] = wl.lambda(k);
-        film_[k] = complexd(spec.filmIor.sample(wl, k), spec.filmK.sample(wl, k));
-        substrate_[k] = complexd(spec.substrateEta.sample(wl, k), spec.substrateK.sample(wl, k));
+        lambda_[k] = lambda(k);
+        film_[k] = complexd(ior(spec.filmIor, k), ior(spec.filmK, k));
+        substrate_[k] = complexd(ior(spec.substrateEta, k), ior(spec.substrateK, k));
         Layer* row = layers_ + k * stride;
         new (row) Layer{film_[k], thickness_};
         for (int j = 0; j < nExtra_; ++j) {
             const auto& e = spec.extra[j];
-            new (row + 1 + j) Layer{complexd(e.ior.sample(wl, k), e.k.sample(wl, k)), e.thicknessNm};
+            new (row + 1 + j) Layer{complexd(ior(e.ior, k), ior(e.k, k)), e.thicknessNm};
         }
     }
 }
@@ -266,6 +286,38 @@ const GaussLegendre& gaussLegendre() {
 }  // namespace
 
 double FilmCoating::internalHemisphericalReflectance(int k) const {
+    if (!rint_) return internalHemisphericalReflectanceDirect(k);
+    if (rgb_) return rint_->rgb[k];
+    const float x = (float(lambda_[k]) - kLambdaMin) / FilmCoatingSpec::RintCache::kStep;
+    const int last = int(rint_->table.size()) - 1;
+    const int i = std::clamp(int(x), 0, last - 1);
+    const float t = std::clamp(x - float(i), 0.0f, 1.0f);
+    return lerp(t, rint_->table[i], rint_->table[i + 1]);
+}
+
+void FilmCoatingSpec::precomputeInternalReflectance(const vec3& rgbLambdas) {
+    if (!thickness->isConstant()) return;
+    rintCache.reset();  // the coatings below must compute directly
+    auto cache = std::make_shared<RintCache>();
+    Arena arena;
+    const int n = int(std::lround((kLambdaMax - kLambdaMin) / RintCache::kStep)) + 1;
+    cache->table.resize(n);
+    for (int i = 0; i < n; i += kMaxWavelengths) {  // batches of up to 32 wavelengths
+        const int m = std::min(kMaxWavelengths, n - i);
+        float lambdas[kMaxWavelengths];
+        for (int j = 0; j < m; ++j) lambdas[j] = kLambdaMin + (i + j) * RintCache::kStep;
+        const FilmCoating c(*this, TextureQuery{}, lambdas, m, arena);
+        for (int j = 0; j < m; ++j) cache->table[i + j] = float(c.internalHemisphericalReflectanceDirect(j));
+        arena.reset();
+    }
+    const SampledWavelengths rgbWl = SampledWavelengths::rgb(rgbLambdas);
+    const FilmCoating c(*this, TextureQuery{}, rgbWl, arena);
+    for (int k = 0; k < 3; ++k) cache->rgb[k] = float(c.internalHemisphericalReflectanceDirect(k));
+    cache->rgbLambdas = rgbLambdas;
+    rintCache = std::move(cache);
+}
+
+double FilmCoating::internalHemisphericalReflectanceDirect(int k) const {
     const GaussLegendre& g = gaussLegendre();
     const double nSub = substrate_[k].real();
     // Below μc the exterior wave is evanescent: R = 1 for lossless layers, < 1 with absorption or

@@ -58,6 +58,18 @@ struct FilmCoatingSpec {
     int bounces = 1;
     FilmRGBMode rgbMode = FilmRGBMode::Point;
 
+    /// Cache of the hemispherical internal reflectance (FilmCoating::internalHemisphericalReflectance)
+    /// for a constant thickness: spectral mode reads r_int(λ) from a table at kRintStep nm over
+    /// [360, 830] (linear interpolation), RGB mode with the given channel wavelengths reads rgb.
+    struct RintCache {
+        static constexpr float kStep = 0.5f;
+        std::vector<float> table;  // λ = 360 + i·kStep
+        vec3 rgbLambdas{0.0f}, rgb{0.0f};
+    };
+    std::shared_ptr<const RintCache> rintCache;
+    /// Fill rintCache (only when the thickness is a constant texture; otherwise a no-op).
+    void precomputeInternalReflectance(const vec3& rgbLambdas = vec3(645.0f, 525.0f, 445.0f));
+
     /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
     /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
     /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
@@ -73,6 +85,8 @@ class FilmCoating {
 public:
     /// Evaluate the spec at a surface point for wavelengths wl (extra layers go to the arena).
     FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena);
+    /// Spectral-mode instance at explicit wavelengths (n ≤ kMaxWavelengths), for precomputation.
+    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena);
 
     int size() const { return n_; }
     double thicknessNm() const { return thickness_; }
@@ -96,12 +110,18 @@ public:
     /// r_int = 2 ∫_0^1 R_below(μ) μ dμ, at entry k: Gauss–Legendre quadrature (16 nodes) on each side of
     /// the critical cosine μc = sqrt(1 − (n_ext/n_sub)²), where R jumps to total reflection (above μc
     /// with μ = μc + (1 − μc) t² to remove the square-root edge).
+    /// Uses the spec's RintCache when it applies (constant thickness; RGB: same channel wavelengths).
     double internalHemisphericalReflectance(int k) const;
+    /// Always the quadrature (for tests of the cache).
+    double internalHemisphericalReflectanceDirect(int k) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }
 
 private:
+    template <typename IorAt, typename LambdaAt>
+    void init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda);
+
     int n_ = 0, nExtra_ = 0, bounces_ = 1;
     FilmPhaseMode mode_ = FilmPhaseMode::Exact;
     bool belcourBarla_ = false;
@@ -110,6 +130,8 @@ private:
     complexd film_[kMaxWavelengths];
     complexd substrate_[kMaxWavelengths];
     Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
+    const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
+    bool rgb_ = false;
 };
 
 }  // namespace iris

@@ -11,6 +11,7 @@
 #include "materials/microfacet.h"
 #include "spectral/cie.h"
 #include "spectral/color_space.h"
+#include "spectral/film_coating.h"
 #include "spectral/film_stack.h"
 #include "tests/bsdf_test_util.h"
 
@@ -352,4 +353,28 @@ TEST(ThinFilmMaterial, NamedConductorSubstrate) {
     }
     EXPECT_THROW(makeBSDF("thinfilm", {{"substrate_material", S("unobtainium")}}), Error);
     EXPECT_THROW(makeBSDF("thinfilm", {{"substrate_material", S("Au")}, {"substrate_eta", 0.2f}}), Error);
+}
+
+TEST(IridescentDiffuse, InternalReflectanceCacheMatchesQuadrature) {
+    for (float d : {0.0f, 300.0f, 5000.0f}) {
+        auto props = makeProps("iridescent_diffuse", {{"thickness", d}, {"film_ior", 1.8f}, {"int_ior", 1.5f}});
+        FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(*props, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
+        spec.precomputeInternalReflectance();
+        ASSERT_TRUE(spec.rintCache);
+        Arena arena;
+        double maxErr = 0;
+        for (float u : {0.01f, 0.13f, 0.5f, 0.77f, 0.99f}) {
+            const SampledWavelengths wl = SampledWavelengths::sampleUniform(u, 8);
+            const FilmCoating c(spec, TextureQuery{}, wl, arena);
+            for (int k = 0; k < 8; ++k)
+                maxErr = std::max(maxErr, std::abs(c.internalHemisphericalReflectance(k) - c.internalHemisphericalReflectanceDirect(k)));
+        }
+        EXPECT_LT(maxErr, d > 1000 ? 2e-3 : 1e-5) << d;
+        const FilmCoating rgb(spec, TextureQuery{}, SampledWavelengths::rgb(vec3(645, 525, 445)), arena);
+        for (int k = 0; k < 3; ++k)
+            EXPECT_FLOAT_EQ(float(rgb.internalHemisphericalReflectance(k)), float(rgb.internalHemisphericalReflectanceDirect(k)));
+        // Other channel wavelengths: computed directly.
+        const FilmCoating rgb2(spec, TextureQuery{}, SampledWavelengths::rgb(vec3(680, 520, 400)), arena);
+        EXPECT_EQ(rgb2.internalHemisphericalReflectance(2), rgb2.internalHemisphericalReflectanceDirect(2));
+    }
 }
