@@ -258,8 +258,8 @@ TEST(PrincipledFurnace, Table) {
     row("dielectric, roughness 0.5 (defaults)", {{"base_color", 1.0f}});
     row("dielectric, roughness 1.0", {{"base_color", 1.0f}, {"roughness", 1.0f}});
     row("dielectric, roughness 0.2", {{"base_color", 1.0f}, {"roughness", 0.2f}});
-    row("Burley diffuse only (specular 0), roughness 1", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 1.0f}});
-    row("Burley diffuse only (specular 0), roughness 0", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 0.0f}});
+    row("specular 0 (Burley diffuse + Schlick F_H residual), roughness 1", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 1.0f}});
+    row("specular 0 (Burley diffuse + Schlick F_H residual), roughness 0", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 0.0f}});
     row("subsurface 1, roughness 0.5", {{"base_color", 1.0f}, {"subsurface", 1.0f}});
     row("sheen 1, roughness 0.5", {{"base_color", 1.0f}, {"sheen", 1.0f}});
     row("clearcoat 1, gloss 1", {{"base_color", 1.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}});
