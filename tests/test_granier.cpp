@@ -156,21 +156,22 @@ TEST(Granier, DiffuseOnlyAlbedoIsWeightTimesFd) {
 }
 
 TEST(Granier, SamplingMatchesPdfChi2) {
-    // Cases whose pdf vanishes at the horizon (the χ² harness integrates cells with Simpson's rule
-    // including the θ = π/2 end points; a pdf that is large exactly at the horizon is checked by
-    // SampledMassMatchesPdfMass below instead).
     struct Case {
-        vec3 n0;
+        vec3 n0, n1;
         float cosO, phi;
     };
-    const Case cases[] = {{vec3(0.24192f, 0, 0.97030f), 0.9f, 0.7f},
-                          {vec3(0.24192f, 0, 0.97030f), 0.3f, 0.7f},
-                          {vec3(0.24192f, 0, 0.97030f), 0.1f, 3.1f},
-                          {vec3(0, 0, 1), 0.6f, 1.0f}};
+    const vec3 z(0, 0, 1), tilt14(0.24192f, 0, 0.97030f);
+    const Case cases[] = {{tilt14, z, 0.9f, 0.7f},
+                          {tilt14, z, 0.3f, 0.7f},
+                          {tilt14, z, 0.1f, 3.1f},
+                          {z, z, 0.6f, 1.0f},
+                          {z, z, 0.05f, 0.7f},  // Phong lobe cut by the horizon
+                          {vec3(0.1736f, 0, 0.9848f), vec3(-0.2f, 0.1f, 0.97f), 0.6f, 0.7f}};  // tilted base
     Chi2Options opt;
-    opt.numTests = 4;
+    opt.numTests = 6;
     for (const Case& k : cases) {
         auto props = makeProps("granier", {{"n0", VectorValue{k.n0}},
+                                           {"n1", VectorValue{k.n1}},
                                            {"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}},
                                            {"e0", 40.0f},  // wider lobe: the χ² grid resolves it
                                            {"e1", 130.0f}});

@@ -146,18 +146,21 @@ TEST(Proposed, RGBModeIsDeterministicAndSpectralN1MatchesChannels) {
 TEST(Proposed, SamplingMatchesPdfChi2) {
     struct Case {
         const char* dist;
-        vec3 n0;
+        vec3 n0, n1;
         float alpha, cosO;
     };
-    const Case cases[] = {{"beckmann", vec3(0, 0, 1), 0.08f, 0.8f},
-                          {"beckmann", vec3(0.1736f, 0, 0.9848f), 0.124f, 0.7f},
-                          {"ggx", vec3(0.1736f, 0, 0.9848f), 0.3f, 0.5f},
-                          {"ggx", vec3(0, 0, 1), 0.5f, 0.2f}};
+    const vec3 z(0, 0, 1), tilt10(0.1736f, 0, 0.9848f);
+    const Case cases[] = {{"beckmann", z, z, 0.08f, 0.8f},
+                          {"beckmann", tilt10, z, 0.124f, 0.7f},
+                          {"ggx", tilt10, z, 0.3f, 0.5f},
+                          {"ggx", z, z, 0.5f, 0.2f},
+                          {"beckmann", tilt10, vec3(-0.2f, 0.1f, 0.97f), 0.2f, 0.5f}};
     Chi2Options opt;
-    opt.numTests = 4;
+    opt.numTests = 5;
     for (const Case& k : cases) {
         auto inst = makeBSDF("proposed", {{"distribution", std::string(k.dist)},
                                           {"n0", VectorValue{k.n0}},
+                                          {"n1", VectorValue{k.n1}},
                                           {"alpha", k.alpha},
                                           {"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}}});
         const vec3 wo = dirFromCos(k.cosO, 0.4f);
