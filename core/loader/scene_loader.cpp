@@ -85,7 +85,7 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
         failAt(p.location(), "sensor type '", p.type(), "' is not supported (supported: perspective)");
     CameraDescription& cam = scene.camera;
     cam.toWorld = p.getTransform("to_world");
-    // Mitsuba's default is a 50 mm lens on 36 mm film along x: fov = 2 atan(18 / 50).
+    // Default: a 50 mm lens on 36 mm-wide film, fov_x = 2 atan(18 / 50) ≈ 39.6°.
     cam.fovDegrees = p.getFloat("fov", 2.0f * std::atan(18.0f / 50.0f) * 180.0f / kPi);
     if (!(cam.fovDegrees > 0 && cam.fovDegrees < 180)) failAt(p.locationOf("fov"), "fov must be in (0, 180) degrees");
     const std::string axis = p.getString("fov_axis", "x");

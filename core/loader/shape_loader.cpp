@@ -113,7 +113,7 @@ ShapeDescription loadShape(const Properties& p) {
     } else {
         failAt(p.location(), "shape type '", type, "' is not supported (supported: obj, ply, serialized, sphere, rectangle, cube, disk)");
     }
-    if (p.has("filename") && isMesh) s.name = p.getString("filename");
+    if (p.id().empty() && p.has("filename") && isMesh) s.name = p.getString("filename");
     if (isMesh) {
         mesh.transform(toWorld);
         if (flip) mesh.flipNormals();
