@@ -89,7 +89,11 @@ double belcourBarlaReflectance(int c, double cosTheta1, double eta1, double film
             continue;
         }
         double I = f.C0, Cm = f.Rs - f.T121;
+        const double pOpd = kTwoPiD * f.opdNm * 1e-9;
         for (int m = 1; m <= 32; ++m) {  // harmonics weighted by channel c's sensitivity
+            // Stop when the remaining terms are negligible: |Cm| decays as r123^m, and every
+            // Gaussian of the fit is below exp(−v_min (m p)²), v_min = 4.3278e9, for all higher m.
+            if (std::exp(-4.3278e+09 * sqr(m * pOpd)) < 1e-8) break;
             Cm *= f.r123;
             I += 2.0 * Cm * belcourBarlaSensitivity(m * f.opdNm, m * f.phi)[c];
             if (std::pow(f.r123, m) < 1e-5) break;

@@ -39,7 +39,8 @@ AiryFourier airyFourier(int pol, double cosTheta1, double eta1, double filmEta, 
 double airyFourierAt(const AiryFourier& f, double lambdaNm, int terms);
 
 /// Spectrally integrated unpolarised reflectance for RGB channel c ∈ {0,1,2}, with the indices of
-/// that channel. Harmonics are summed until r123^m < 1e-5 (the paper keeps m ≤ 2). In [0, 1].
+/// that channel. Harmonics are summed until r123^m < 1e-5 or the fit's Gaussian envelope at m·OPD
+/// is below 1e-8 (the paper keeps m ≤ 2). In [0, 1].
 double belcourBarlaReflectance(int c, double cosTheta1, double eta1, double filmEta, double filmThicknessNm,
                                complexd substrate);
 
