@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/registry.h"
 #include "materials/microfacet.h"
 #include "materials/principled_terms.h"
 #include "spectral/spectrum_factory.h"
@@ -138,6 +139,66 @@ TEST(Principled, SpecularTintUsesLuminanceOfRGB) {
             const float expect = 0.08f * (cd[i] / lum - 1.0f) * d / 4.0f;
             EXPECT_NEAR(diff[i], expect, 1e-4f * std::abs(d)) << (spectral ? "spectral " : "rgb ") << i;
         }
+    }
+}
+
+TEST(Principled, TexturedBaseColourTintInSpectralMode) {
+    // base_color from a checkerboard texture; in spectral mode Ctint(λ) = Cd(λ)/lum(rgb(uv)) where
+    // rgb(uv) is the texture's RGB value at the shading point (test as above, at two uv cells).
+    const vec3 c0(0.7f, 0.3f, 0.1f), c1(0.1f, 0.2f, 0.8f);
+    auto makeTex = [&] {
+        auto t = std::make_shared<Properties>("texture", "checkerboard", SourceLocation{"<test>", 0});
+        t->set("color0", RGBValue{c0}, SourceLocation{});
+        t->set("color1", RGBValue{c1}, SourceLocation{});
+        return t;
+    };
+    auto p1 = test::makeProps("principled", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 1.0f}});
+    auto p0 = test::makeProps("principled", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 0.0f}});
+    p1->set("base_color", makeTex(), SourceLocation{});
+    p0->set("base_color", makeTex(), SourceLocation{});
+    auto m1 = MaterialRegistry::instance().create(*p1);
+    auto m0 = MaterialRegistry::instance().create(*p0);
+    auto tex = SpectrumTextureRegistry::instance().create(*makeTex(), SpectrumKind::Reflectance);
+    const float d = 1.0f / (kPi * std::pow(0.25f, 2.0f));
+    const vec3 n(0, 0, 1);
+    Arena arena;
+    for (vec2 uv : {vec2(0.25f, 0.25f), vec2(0.75f, 0.25f)}) {
+        ShadingPoint sp;
+        sp.tex.uv = uv;
+        SampledWavelengths wl = SampledWavelengths::sampleVisible(0.61f, 6);
+        const SampledSpectrum cd = tex->eval(sp.tex, wl);
+        const SampledSpectrum rgb = tex->eval(sp.tex, SampledWavelengths::rgb(vec3(645, 525, 445)));
+        const float lum = 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
+        const SampledSpectrum diff =
+            m1->getBSDF(sp, wl, arena)->eval(n, n, kRad) - m0->getBSDF(sp, wl, arena)->eval(n, n, kRad);
+        for (int i = 0; i < wl.size(); ++i)
+            EXPECT_NEAR(diff[i], 0.08f * (cd[i] / lum - 1.0f) * d / 4.0f, 1e-4f * d) << "uv " << uv.x << " λ " << i;
+    }
+}
+
+TEST(PrincipledSampling, SpectralModeConsistency) {
+    // Eight wavelengths of an RGB-upsampled base colour: sampling and eval/pdf must stay consistent
+    // (the lobe probabilities average over the wavelengths).
+    auto p = test::makeProps("principled", {{"base_color", RGBValue{vec3(0.9f, 0.2f, 0.4f)}},
+                                            {"roughness", 0.4f},
+                                            {"metallic", 0.5f},
+                                            {"clearcoat", 0.7f},
+                                            {"sheen", 0.5f},
+                                            {"anisotropic", 0.4f}});
+    auto inst = test::makeBSDF(*p, SampledWavelengths::sampleVisible(0.2f, 8));
+    for (float c : {0.9f, 0.3f}) {
+        const vec3 wo = test::dirFromCos(c, 1.3f);
+        test::Chi2Options opt;
+        opt.numTests = 2;
+        opt.thetaBins = 40;
+        opt.phiBins = 80;
+        opt.samples = 1000000;
+        const auto chi = test::chi2Test(*inst.bsdf, wo, opt);
+        EXPECT_TRUE(chi.passed) << chi.message;
+        const auto cons = test::checkConsistency(*inst.bsdf, wo);
+        EXPECT_EQ(cons.invalid, 0) << cons.message;
+        EXPECT_LT(cons.maxRelErrF, 1e-4f) << cons.message;
+        EXPECT_LT(cons.maxRelErrPdf, 1e-4f) << cons.message;
     }
 }
 
