@@ -20,8 +20,7 @@ from iris_experiments.sweep import Sweep  # noqa: E402
 
 # ---- definition (edit here) -----------------------------------------------------------------
 SCENES = {
-    "granier": SceneSpec("scenes/thin_film_spheres.xml", materials=("granier",), params=("thickness",),
-                         note="thin-film scene with a <default name=\"thickness\"/> parameter, being written"),
+    "granier": SceneSpec("experiments/scenes/granier_thickness.xml", materials=("granier",), params=("thickness",)),
 }
 THICKNESS_NM = [76, 200, 350, 600, 1000]          # thesis 000 Fig. 4.2
 FULL = {"spp": 512, "ref_spp": 1024, "ref_seeds": 4, "spectral_samples": 8}

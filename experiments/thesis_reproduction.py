@@ -27,12 +27,10 @@ from iris_experiments.sweep import Sweep, format_value  # noqa: E402
 
 # ---- definition (edit here) -----------------------------------------------------------------
 SCENES = {
-    "granier": SceneSpec("scenes/thesis_granier.xml", materials=("granier",),
-                         params=("thickness", "eta_t", "wavelengths", "max_depth"),
-                         note="thesis Fig. 4.x setup with the Granier material (Table 3.1), being written"),
-    "proposed": SceneSpec("scenes/thesis_proposed.xml", materials=("proposed",),
-                          params=("thickness", "eta_t", "wavelengths", "alpha", "max_depth"),
-                          note="thesis Fig. 4.x setup with the proposed model (Table 4.2), being written"),
+    "granier": SceneSpec("experiments/scenes/granier_thickness.xml", materials=("granier",),
+                         params=("thickness", "eta_t", "wavelengths", "max_depth")),
+    "proposed": SceneSpec("experiments/scenes/proposed_thickness.xml", materials=("proposed",),
+                          params=("thickness", "eta_t", "wavelengths", "alpha", "max_depth")),
 }
 THICKNESS_NM = [76, 200, 350, 600, 1000]                                     # Fig. 4.2
 ETA_T = [(1.5, 1.6, 1.8), (1.8, 1.7, 1.6), (1.49, 1.49, 1.49)]              # Fig. 4.3
@@ -41,7 +39,8 @@ ALPHA = [0.9, 0.5, 0.1, 0.05, 0.01]                                         # Fi
 TIMING_SPP = [16, 64, 256, 1024]                                            # Table 4.5
 DEPTHS = {"direct": 2, "global": 8}
 FULL = {"spp": 256}
-QUICK = {"spp": 4, "res": 32, "timing_spp": [4, 16]}
+QUICK = {"spp": 4, "res": 32, "timing_spp": [4, 16],   # quick: fewer values per sweep
+         "values": {"thickness": [76, 1000], "eta_t": ETA_T[:2], "wavelengths": WAVELENGTHS, "alpha": [0.5, 0.05]}}
 # ---------------------------------------------------------------------------------------------
 
 IMAGE_SWEEPS = [("thickness", "thickness", THICKNESS_NM, "Fig. 4.2"), ("eta_t", "eta_t", ETA_T, "Fig. 4.3"),
@@ -70,6 +69,7 @@ class ThesisReproduction(Experiment):
         fixed = {"mode": "rgb", "spp": c["spp"], "seed": 1}
         sweeps = []
         for name, key, values, _ in IMAGE_SWEEPS:
+            values = c.get("values", {}).get(key, values)
             labels = {l: s.path for l, s in self.scene_specs.items() if key in s.params}
             # The channel wavelengths are the material's (-D wavelengths=...) and the renderer's RGB
             # channels (--rgb-wavelengths), kept equal.
@@ -84,6 +84,7 @@ class ThesisReproduction(Experiment):
     def analyse(self, ctx):
         rows, figures, conclusions, sections = [], [], [], []
         for name, key, values, fig in IMAGE_SWEEPS:
+            values = self.cfg(ctx.args.quick).get("values", {}).get(key, values)
             jobs = ctx.by_sweep(name)
             labels = [l for l in self.scene_specs if any(j.label == l for j in jobs)]
             if not jobs:

@@ -91,6 +91,8 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--scene", action="append", default=[], metavar="[LABEL=]PATH",
                    help="render PATH instead of the defined scene LABEL (or of every scene); its materials are "
                         "then checked from the file only")
+    p.add_argument("--skip-missing", action="store_true",
+                   help="leave out scenes that are not available (with a warning) instead of stopping")
     p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
     return p.parse_args(argv)
 
@@ -129,6 +131,17 @@ def _run(exp: Experiment, args) -> int:
     bdir = tools.build_dir(args.build_dir)
     out = output_dir(exp, args)
     override_scenes(exp, args.scene)
+    if args.skip_missing:
+        available = {}
+        for label, spec in exp.scene_specs.items():
+            try:
+                scenes.check_scenes([spec])
+                available[label] = spec
+            except ExperimentError as e:
+                print(f"{exp.name}: warning: leaving out scene '{label}': {e}", file=sys.stderr)
+        if not available:
+            raise ExperimentError("no scene of this experiment is available")
+        exp.scene_specs = available
     scenes.check_scenes(exp.scene_specs.values())
     render = bdir / "render" if (args.slurm or args.dry_run) else tools.tool("render", bdir)
     sweeps = exp.sweeps(args.quick, args)
