@@ -149,16 +149,25 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     failAt(loc, "invalid spectrum value");
 }
 
+namespace {
+/// A plain number as a spectrum. Emitters multiply it by D65 with Y = 1 (as Mitsuba 3 does), so a
+/// float emitter renders the same white, (v, v, v), in spectral and RGB mode.
+SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind) {
+    if (kind == SpectrumKind::Illuminant) return makeRGBSpectrum(vec3(v), kind);
+    return std::make_shared<ConstantSpectrum>(v, kind);
+}
+}  // namespace
+
 SpectrumPtr Properties::getSpectrum(const std::string& name, SpectrumKind kind) const {
     const Entry& e = require(name);
-    if (const float* f = std::get_if<float>(&e.value)) return std::make_shared<ConstantSpectrum>(*f, kind);
-    if (const int64_t* i = std::get_if<int64_t>(&e.value)) return std::make_shared<ConstantSpectrum>(float(*i), kind);
+    if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
+    if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
     if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
     if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) return spectrumFromValue(*s, kind, e.loc);
     typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
 }
 SpectrumPtr Properties::getSpectrum(const std::string& name, SpectrumKind kind, float def) const {
-    return present(name) ? getSpectrum(name, kind) : std::make_shared<ConstantSpectrum>(def, kind);
+    return present(name) ? getSpectrum(name, kind) : spectrumFromNumber(def, kind);
 }
 
 SpectrumTexturePtr Properties::getSpectrumTexture(const std::string& name, SpectrumKind kind) const {
@@ -171,7 +180,7 @@ SpectrumTexturePtr Properties::getSpectrumTexture(const std::string& name, Spect
     return constantTexture(getSpectrum(name, kind));
 }
 SpectrumTexturePtr Properties::getSpectrumTexture(const std::string& name, SpectrumKind kind, float def) const {
-    return present(name) ? getSpectrumTexture(name, kind) : constantTexture(std::make_shared<ConstantSpectrum>(def, kind));
+    return present(name) ? getSpectrumTexture(name, kind) : constantTexture(spectrumFromNumber(def, kind));
 }
 
 FloatTexturePtr Properties::getFloatTexture(const std::string& name) const {

@@ -13,13 +13,20 @@ using namespace iris::testing;
 
 namespace {
 
-SceneDescription whiteOnWhite() {
+/// White sphere in a white environment, both given as RGB triples or as plain floats.
+SceneDescription whiteOnWhite(bool asFloats) {
     SceneDescription d = furnaceScene(1.0f, 16, 256);
     Properties bsdf("bsdf", "diffuse", SourceLocation{"<test>", 0});
-    bsdf.set("reflectance", RGBValue{vec3(1.0f)}, SourceLocation{"<test>", 0});
+    if (asFloats)
+        bsdf.set("reflectance", 1.0f, SourceLocation{"<test>", 0});
+    else
+        bsdf.set("reflectance", RGBValue{vec3(1.0f)}, SourceLocation{"<test>", 0});
     d.shapes[0].material = MaterialRegistry::instance().create(bsdf);
     Properties env("emitter", "constant", SourceLocation{"<test>", 0});
-    env.set("radiance", RGBValue{vec3(1.0f)}, SourceLocation{"<test>", 0});
+    if (asFloats)
+        env.set("radiance", 1.0f, SourceLocation{"<test>", 0});
+    else
+        env.set("radiance", RGBValue{vec3(1.0f)}, SourceLocation{"<test>", 0});
     d.lights = {LightRegistry::instance().create(env)};
     return d;
 }
@@ -44,7 +51,8 @@ void meanRgb(const Film& film, bool rgbMode, vec3& mean, vec3& stderr_) {
 }  // namespace
 
 TEST(ColorPipeline, RgbWhiteLightOnRgbWhiteWallIsWhite) {
-    const Scene scene(whiteOnWhite());
+  for (const bool asFloats : {false, true}) {
+    const Scene scene(whiteOnWhite(asFloats));
     for (const bool rgbMode : {false, true}) {
         RenderOptions opt;
         opt.rgbMode = rgbMode;
@@ -56,8 +64,10 @@ TEST(ColorPipeline, RgbWhiteLightOnRgbWhiteWallIsWhite) {
         meanRgb(film, rgbMode, mean, se);
         for (int c = 0; c < 3; ++c) {
             // The D65 white point maps to (1,1,1) up to the rounding of the published matrix (1e-3).
-            EXPECT_NEAR(mean[c], 1.0f, 5 * se[c] + 2e-3f) << (rgbMode ? "rgb" : "spectral") << " channel " << c;
+            EXPECT_NEAR(mean[c], 1.0f, 5 * se[c] + 2e-3f)
+                << (rgbMode ? "rgb" : "spectral") << (asFloats ? " floats" : " rgb values") << " channel " << c;
         }
         if (rgbMode) EXPECT_EQ(film.pixel(0, 0), vec3(1.0f));  // background: radiance exactly (1,1,1)
     }
+  }
 }
