@@ -250,7 +250,7 @@ test::BSDFInstance makeCase(const PrincipledCase& k) {
 
 TEST(PrincipledSampling, ChiSquareConsistencyAndPdf) {
     const auto cases = principledCases();
-    const float coss[] = {0.95f, 0.5f, 0.1f};
+    const float coss[] = {0.95f, 0.5f, 0.1f, 0.03f};
     const int numTests = int(cases.size() * std::size(coss));
     for (const auto& k : cases) {
         auto inst = makeCase(k);
