@@ -157,7 +157,12 @@ TEST(SceneLoader, BuiltinShapesMeshesMaterialsAndEmitters) {
     expectNear(rect.mesh->positions[2], vec3(2, 2, 1));
     ASSERT_TRUE(rect.material);
     ASSERT_TRUE(rect.emission);
-    EXPECT_FLOAT_EQ(rect.emission->eval(550.0f), 3.0f);
+    {
+        SpectrumValue three;
+        three.constant = 3.0f;
+        const SpectrumPtr expected = spectrumFromValue(three, SpectrumKind::Illuminant, SourceLocation{});
+        for (float l : {420.0f, 550.0f, 680.0f}) EXPECT_FLOAT_EQ(rect.emission->eval(l), expected->eval(l));
+    }
     EXPECT_EQ(rect.emission->kind(), SpectrumKind::Illuminant);
     EXPECT_EQ(rect.name, "rect");
 
@@ -215,7 +220,13 @@ TEST(SceneLoader, ValuesAndSpectra) {
     ASSERT_EQ(s.shapes.size(), 4u);
     EXPECT_NEAR(s.shapes[0].emission->eval(550.0f), 0.5f, 1e-6f);
     EXPECT_GT(s.shapes[1].emission->eval(550.0f), 0.0f);
-    EXPECT_FLOAT_EQ(s.shapes[2].emission->eval(420.0f), 2.5f);
+    {
+        // A float radiance becomes whatever Properties::getSpectrum makes of a float illuminant.
+        Properties ref("emitter", "area", SourceLocation{"ref.xml", 1});
+        ref.set("radiance", 2.5f, SourceLocation{"ref.xml", 1});
+        const SpectrumPtr expected = ref.getSpectrum("radiance", SpectrumKind::Illuminant);
+        for (float l : {420.0f, 550.0f, 680.0f}) EXPECT_FLOAT_EQ(s.shapes[2].emission->eval(l), expected->eval(l));
+    }
     EXPECT_FLOAT_EQ(s.shapes[3].emission->eval(420.0f), 1.0f);
     // Value parsing helpers.
     const SourceLocation at{"x.xml", 1};
@@ -435,4 +446,62 @@ TEST(SceneLoader, MatpreviewLoadsOrFailsCleanly) {
             EXPECT_NE(msg.find("not supported yet"), std::string::npos) << msg;
         }
     }
+}
+
+namespace {
+/// A test-local material that records what the loader handed to its factory.
+struct ProbeRecord {
+    std::string intIor;
+    std::vector<std::string> childIds, childTags;
+    std::string texType;
+    int intIorLine = 0;
+    int calls = 0;
+};
+ProbeRecord gProbe;
+
+class ProbeMaterial final : public Material {
+public:
+    const BSDF* getBSDF(const ShadingPoint&, SampledWavelengths&, Arena&) const override { return nullptr; }
+};
+
+std::shared_ptr<Material> createProbe(const Properties& p) {
+    ++gProbe.calls;
+    gProbe.intIor = p.getString("int_ior");
+    gProbe.intIorLine = p.locationOf("int_ior").line;
+    gProbe.childIds.clear();
+    gProbe.childTags.clear();
+    for (const PropertiesPtr& c : p.children()) {
+        gProbe.childIds.push_back(c->id());
+        gProbe.childTags.push_back(c->tag() + ":" + c->type());
+    }
+    const PropertiesPtr tex = p.getObject("tex");
+    gProbe.texType = tex->tag() + ":" + tex->type();
+    return std::make_shared<ProbeMaterial>();
+}
+IRIS_REGISTER(MaterialRegistry, "loader_test_probe", createProbe);
+}  // namespace
+
+TEST(SceneLoader, ParametersChildrenAndRefsReachTheFactory) {
+    gProbe = ProbeRecord{};
+    const SceneDescription s = load("probe.xml", scene(R"(<bsdf type="loader_test_probe" id="probe">
+  <string name="int_ior" value="water"/>
+  <bsdf type="diffuse" id="inline"/>
+  <ref id="inner"/>
+  <texture type="checkerboard" name="tex"/>
+</bsdf>
+<bsdf type="diffuse" id="inner"/>
+<shape type="sphere"><ref id="probe"/></shape>
+<shape type="sphere"><ref name="bsdf" id="probe"/></shape>
+)"));
+    EXPECT_EQ(gProbe.calls, 1);  // created once, shared by both shapes
+    EXPECT_EQ(gProbe.intIor, "water");  // named presets pass through as strings
+    EXPECT_EQ(gProbe.intIorLine, 3);
+    EXPECT_EQ(gProbe.childIds, (std::vector<std::string>{"inline", "inner"}));
+    EXPECT_EQ(gProbe.childTags, (std::vector<std::string>{"bsdf:diffuse", "bsdf:diffuse"}));
+    EXPECT_EQ(gProbe.texType, "texture:checkerboard");
+    ASSERT_EQ(s.shapes.size(), 2u);
+    EXPECT_EQ(s.shapes[0].material, s.shapes[1].material);
+    // The same id used twice in one shape is an error (two bsdfs).
+    expectLoadError("probe2.xml", scene("<bsdf type=\"diffuse\" id=\"d\"/>\n<shape type=\"sphere\"><ref id=\"d\"/>\n<ref name=\"bsdf\" id=\"d\"/></shape>\n"),
+                    3, {"more than one bsdf"});
 }

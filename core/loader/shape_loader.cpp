@@ -42,10 +42,10 @@ void attachChildren(const Properties& p, ShapeDescription& s) {
     PropertiesPtr emitter = p.getObject("emitter", false);
     for (const PropertiesPtr& c : p.children()) {
         if (c->tag() == "bsdf") {
-            if (bsdf) failAt(c->location(), "shape has more than one bsdf");
+            if (bsdf) failAt(p.location(), "shape has more than one bsdf");
             bsdf = c;
         } else if (c->tag() == "emitter") {
-            if (emitter) failAt(c->location(), "shape has more than one emitter");
+            if (emitter) failAt(p.location(), "shape has more than one emitter");
             emitter = c;
         } else {
             failAt(c->location(), "<", c->tag(), "> is not supported inside a shape (supported: bsdf, emitter)");
