@@ -61,7 +61,7 @@ inline vec3 sampleGTR1(const vec2& u, float alpha) {
 /// Clearcoat α from clearcoatGloss ([B12] §5.4): α = mix(0.1, 0.001, gloss).
 inline float clearcoatAlpha(float gloss) { return lerp(gloss, 0.1f, 0.001f); }
 
-/// Anisotropic GGX roughnesses ([B12] Appendix B.1 / addendum): aspect = sqrt(1 − 0.9 anisotropic),
+/// Anisotropic GGX roughnesses ([B12] addendum "anisotropic"; `disney.brdf`): aspect = sqrt(1 − 0.9 anisotropic),
 /// αx = roughness²/aspect, αy = roughness²·aspect, both at least 0.001 (as in `disney.brdf`).
 inline vec2 anisotropicAlphas(float roughness, float anisotropic) {
     const float aspect = std::sqrt(1.0f - 0.9f * anisotropic);
