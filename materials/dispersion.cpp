@@ -201,9 +201,6 @@ IOR readIOR(const Properties& p, const std::string& prefix, const std::string& d
     return result;
 }
 
-}  // namespace iris
-
-namespace iris {
 
 float relativeIOR(const IOR& intIOR, const IOR& extIOR, SampledWavelengths& wl, SampledSpectrum* eta) {
     *eta = intIOR.sample(wl) / extIOR.sample(wl);

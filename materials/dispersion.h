@@ -56,9 +56,6 @@ std::vector<std::string> iorPresetNames();
 /// At most one form may be given; none gives `def` (a preset name or a number as text).
 IOR readIOR(const Properties& p, const std::string& prefix, const std::string& def);
 
-}  // namespace iris
-
-namespace iris {
 
 /// The relative index η_int/η_ext of a dielectric interface at the path's wavelengths, written
 /// to *eta. When it varies with λ in spectral mode the secondary wavelengths are terminated

@@ -231,9 +231,6 @@ float MicrofacetDistribution::pdf(const vec3& wo, const vec3& m) const {
     return smithG1(w, m) * std::max(0.0f, glm::dot(w, m)) * D(m) / w.z;  // [HD14] eq. 2
 }
 
-}  // namespace iris
-
-namespace iris {
 
 MicrofacetParams MicrofacetParams::read(const Properties& p, const std::string& defaultDistribution, float defaultAlpha) {
     MicrofacetParams mp;

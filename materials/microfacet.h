@@ -16,10 +16,13 @@
 //   Thesis 000 eqs. 2.10 (Beckmann D), 2.12–2.14 (G ≈ G1 G1, rational G1), 2.19–2.22 (sampling).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/frame.h"
 #include "core/math.h"
+#include "core/properties.h"
+#include "core/texture.h"
 
 namespace iris {
 
@@ -109,15 +112,7 @@ inline float phongExponentFromBeckmannAlpha(float a) { return 2.0f / (a * a) - 2
 /// polynomial, refined by two Newton steps in double). Exposed for tests.
 double erfInv(double x);
 
-}  // namespace iris
-
 // ---- Scene parameters (Mitsuba conventions) ----
-#include <memory>
-
-#include "core/properties.h"
-#include "core/texture.h"
-
-namespace iris {
 
 /// The microfacet parameters of a rough material as read from a scene:
 ///   distribution  "beckmann" | "ggx" (default given by the plugin; Mitsuba: "beckmann")
