@@ -47,7 +47,13 @@ public:
     };
     explicit GranierBSDF(const Params& p) : p_(p) {}
 
-    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        // The model is not reciprocal (Fresnel factors of eqs. 2.23, 2.27 use the light side):
+        // importance transport uses the adjoint f*(wo, wi) = f(wi, wo).
+        return mode == TransportMode::Importance ? evalRadiance(wi, wo) : evalRadiance(wo, wi);
+    }
+
+    SampledSpectrum evalRadiance(const vec3& wo, const vec3& wi) const {
         const int n = p_.etaT.size();
         SampledSpectrum f(n);
         if (wo.z <= 0 || wi.z <= 0) return f;

@@ -217,3 +217,16 @@ TEST(Granier, RejectsBadParameters) {
     EXPECT_THROW(makeBSDF("granier", {{"wavelengths", RGBValue{vec3(645, 0, 445)}}}), Error);
     EXPECT_THROW(makeBSDF("granier", {{"no_such", 1.0f}}), Error);
 }
+
+TEST(Granier, ImportanceModeIsTheAdjoint) {
+    // Not reciprocal (Fresnel of the light side in eqs. 2.23, 2.27): importance transport must use
+    // f*(wo, wi) = f(wi, wo).
+    const RefParams r;
+    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
+    const D3 wi(-0.6, 0, 0.8);
+    const D3 wo = glm::normalize(internalMirror(r, wi, 1) + D3(0.01, 0.01, 0));
+    const SampledSpectrum fr = inst.bsdf->eval(vec3(wo), vec3(wi), TransportMode::Radiance);
+    const SampledSpectrum fi = inst.bsdf->eval(vec3(wi), vec3(wo), TransportMode::Importance);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(fr[c], fi[c]);
+    EXPECT_GT(reciprocityError(*inst.bsdf, 2000, 6, 1e-3f), 1e-3f);  // really not reciprocal
+}

@@ -209,3 +209,13 @@ TEST(ThesisScenes, LoadWithTheirParameterSets) {
     EXPECT_GE(s.shapes.size(), 2u);
     EXPECT_THROW(loadScene(dir + "thesis_proposed_table42.xml", {{"phase_mode", "never"}}), Error);
 }
+
+TEST(Proposed, IsReciprocalLikeRoughPlastic) {
+    // fr, T12·T21 and Φ are symmetric in (wi, wo): both phase modes keep reciprocity.
+    for (const char* mode : {"total", "per_reflection"}) {
+        auto inst = makeBSDF("proposed", {{"phase_mode", std::string(mode)}, {"alpha", 0.2f}});
+        EXPECT_LT(reciprocityError(*inst.bsdf), 1e-4f) << mode;
+    }
+    auto rp = makeBSDF("roughplastic", {{"alpha", 0.2f}});
+    EXPECT_LT(reciprocityError(*rp.bsdf), 1e-4f);
+}
