@@ -378,3 +378,67 @@ TEST(IridescentDiffuse, InternalReflectanceCacheMatchesQuadrature) {
         EXPECT_EQ(rgb2.internalHemisphericalReflectance(2), rgb2.internalHemisphericalReflectanceDirect(2));
     }
 }
+
+TEST(ThinFilmMaterial, SmoothTransmissionZeroThicknessIsFresnelDielectric) {
+    auto inst = makeBSDF("thinfilm", {{"substrate", S("dielectric")},
+                                      {"substrate_eta", 1.5f},
+                                      {"transmission", true},
+                                      {"thickness", 0.0f}},
+                         spectralWl(0.3f, 4));
+    for (float c : {0.95f, 0.5f, 0.1f, -0.95f, -0.8f, -0.5f}) {  // negative: lit from the substrate side
+        const vec3 wo = dirFromCos(c, 0.7f);
+        const float F = fresnelDielectric(c, 1.5f);
+        const auto r = inst.bsdf->sample(wo, 0.0f, vec2(0.5f), TransportMode::Radiance);
+        ASSERT_TRUE(r && r->isSpecular() && !r->isTransmission());
+        EXPECT_NEAR(r->f[0] * std::abs(c), F, 2e-6) << c;
+        EXPECT_NEAR(r->wi.z, c, 1e-6);
+        const auto t = inst.bsdf->sample(wo, 0.99999f, vec2(0.5f), TransportMode::Importance);
+        if (F >= 1.0f) {  // total internal reflection: always reflected
+            EXPECT_TRUE(!t || !t->isTransmission());
+            continue;
+        }
+        ASSERT_TRUE(t && t->isTransmission()) << c;
+        EXPECT_NEAR(t->f[0] * std::abs(t->wi.z), 1.0f - F, 2e-6) << c;
+        // Snell: n_i sinθi = n_t sinθt, opposite side.
+        const float ni = c > 0 ? 1.0f : 1.5f, nt = c > 0 ? 1.5f : 1.0f;
+        EXPECT_NEAR(ni * std::sqrt(1 - c * c), nt * std::sqrt(1 - t->wi.z * t->wi.z), 1e-5);
+        EXPECT_LT(t->wi.z * c, 0.0f);
+        const auto tr = inst.bsdf->sample(wo, 0.99999f, vec2(0.5f), TransportMode::Radiance);
+        EXPECT_NEAR(tr->f[0] * std::abs(tr->wi.z), (1.0f - F) / sqr(nt / ni), 2e-6);  // radiance: 1/η²
+    }
+    // Beyond the critical angle from inside: R = 1.
+    const auto tir = inst.bsdf->sample(dirFromCos(-0.3f), 0.99f, vec2(0.5f), TransportMode::Radiance);
+    ASSERT_TRUE(tir && !tir->isTransmission());
+    EXPECT_NEAR(tir->weight()[0], 1.0f, 1e-6);
+}
+
+TEST(ThinFilmMaterial, SmoothTransmissionConservesEnergyBothSides) {
+    // Lossless film: R + T = 1 from either side (importance transport, no 1/η² factor), and the
+    // free-standing film (bubble) transmits straight through.
+    auto glass = makeBSDF("thinfilm", {{"substrate", S("dielectric")}, {"substrate_eta", 1.5f},
+                                       {"film_ior", 2.1f}, {"thickness", 230.0f}, {"transmission", true}},
+                          spectralWl(0.7f, 4));
+    auto bubble = makeBSDF("thinfilm", {{"substrate", S("dielectric")}, {"substrate_eta", 1.0f},
+                                        {"film_ior", 1.33f}, {"thickness", 400.0f}, {"transmission", true}},
+                           spectralWl(0.7f, 4));
+    for (float c : {0.9f, 0.4f, -0.9f, -0.85f}) {
+        for (const Estimate& a : albedo(*glass.bsdf, dirFromCos(c), 50000, 4, TransportMode::Importance))
+            EXPECT_NEAR(a.mean, 1.0, 4 * a.stderr_ + 1e-5) << c;
+        for (const Estimate& a : albedo(*bubble.bsdf, dirFromCos(c), 50000))
+            EXPECT_NEAR(a.mean, 1.0, 4 * a.stderr_ + 1e-5) << c;
+        const auto t = bubble.bsdf->sample(dirFromCos(c, 0.3f), 0.9999f, vec2(0.5f), TransportMode::Radiance);
+        ASSERT_TRUE(t && t->isTransmission());
+        const vec3 expected = -dirFromCos(c, 0.3f);
+        EXPECT_NEAR(glm::length(t->wi - expected), 0.0f, 1e-5f);
+    }
+    // Reflectance of the bubble at the sampled wavelengths is the free-standing Airy film.
+    const SampledWavelengths wl = spectralWl(0.7f, 4);
+    const auto r = bubble.bsdf->sample(dirFromCos(0.6f), 0.0f, vec2(0.5f), TransportMode::Radiance);
+    for (int k = 0; k < 4; ++k)
+        EXPECT_NEAR(r->f[k] * 0.6f, airySingleFilm(wl.lambda(k), 0.6, 1.0, Layer{1.33f, 400.0}, 1.0).R(), 2e-6);
+    EXPECT_THROW(makeBSDF("thinfilm", {{"transmission", true}}), Error);  // conductor
+    EXPECT_THROW(makeBSDF("thinfilm", {{"substrate", S("dielectric")}, {"transmission", true}, {"alpha", 0.1f}}), Error);
+    EXPECT_THROW(makeBSDF("thinfilm", {{"substrate", S("dielectric")}, {"transmission", true},
+                                       {"substrate_eta", RGBValue{vec3(1.5f, 1.52f, 1.55f)}}}),
+                 Error);
+}
