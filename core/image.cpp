@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -121,7 +122,10 @@ void writeLDR(const std::string& path, const Image& img) {
     // The plugin is chosen from the real path's extension; the data then goes to the temp file.
     auto out = OIIO::ImageOutput::create(path);
     if (!out) fail(path, ": cannot write this image format: ", OIIO::geterror());
-    const int channels = std::min(img.channels, 4);
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const bool noAlpha = ext == ".jpg" || ext == ".jpeg";  // JPEG has no alpha channel
+    const int channels = std::min(img.channels, noAlpha ? 3 : 4);
     OIIO::ImageSpec spec(img.width, img.height, channels, OIIO::TypeDesc::UINT8);
     std::vector<unsigned char> bytes(img.pixelCount() * size_t(channels));
     for (size_t p = 0; p < img.pixelCount(); ++p)

@@ -189,3 +189,13 @@ TEST_F(ImageIO, AbsurdSizeIsRefusedBeforeAllocating) {
         EXPECT_NE(msg.find("2^28"), std::string::npos) << msg;
     }
 }
+
+TEST_F(ImageIO, JpegDropsAlpha) {
+    Image img(4, 2, 4);
+    for (float& v : img.pixels) v = 0.5f;
+    const std::string p = file("x.jpg");
+    writeLDR(p, img);
+    const Image back = readImage(p);
+    EXPECT_EQ(back.channels, 3);
+    EXPECT_NEAR(back.at(1, 1, 0), 128.0f / 255.0f, 3.0f / 255.0f);  // lossy
+}

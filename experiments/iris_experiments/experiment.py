@@ -74,6 +74,7 @@ class Experiment:
 
 
 def parse_args(exp: Experiment, argv):
+    argv = list(argv)
     p = argparse.ArgumentParser(prog=f"experiments/{exp.name}.py", description=f"{exp.title}. {exp.question}")
     p.add_argument("--quick", action="store_true", help="tiny images and few samples (about a minute)")
     p.add_argument("--parallel", type=int, default=1, help="render jobs run at the same time (default 1)")
@@ -91,10 +92,15 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--scene", action="append", default=[], metavar="[LABEL=]PATH",
                    help="render PATH instead of the defined scene LABEL (or of every scene); its materials are "
                         "then checked from the file only")
+    p.add_argument("--spp-scale", type=float, default=1.0,
+                   help="multiply every sample count of the sweeps by this factor (a cheaper or longer run; "
+                        "recorded in the report)")
     p.add_argument("--skip-missing", action="store_true",
                    help="leave out scenes that are not available (with a warning) instead of stopping")
     p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
-    return p.parse_args(argv)
+    args = p.parse_args(argv)
+    args.argv = argv
+    return args
 
 
 def output_dir(exp: Experiment, args) -> Path:
@@ -145,6 +151,14 @@ def _run(exp: Experiment, args) -> int:
     scenes.check_scenes(exp.scene_specs.values())
     render = bdir / "render" if (args.slurm or args.dry_run) else tools.tool("render", bdir)
     sweeps = exp.sweeps(args.quick, args)
+    if args.spp_scale != 1.0:
+        if not args.spp_scale > 0:
+            raise ExperimentError(f"--spp-scale must be positive, got {args.spp_scale}")
+        for s in sweeps:
+            if "spp" in s.fixed:
+                s.fixed["spp"] = max(1, round(s.fixed["spp"] * args.spp_scale))
+            if "spp" in s.axes:
+                s.axes["spp"] = [max(1, round(v * args.spp_scale)) for v in s.axes["spp"]]
     if args.threads:
         for s in sweeps:
             s.fixed.setdefault("threads", args.threads)
@@ -181,13 +195,15 @@ def _run(exp: Experiment, args) -> int:
     run_settings["parallel jobs"] = f"{args.parallel} (render times are only comparable when 1)"
     run_settings["threads per job"] = args.threads or "all cores"
     run_settings["render jobs"] = len(jobs)
+    if args.spp_scale != 1.0:
+        run_settings["spp scale"] = f"{args.spp_scale:g} (every sample count above is multiplied by this)"
     ctx = Context(args, out, jobs, bdir)
     analysis = exp.analyse(ctx)
     csv_path = collect.write_csv(analysis.rows, out / "results.csv")
     collect.write_json({"experiment": exp.name, "settings": run_settings, "rows": analysis.rows},
                        out / "results.json")
     table = report.markdown_table(analysis.rows, analysis.columns)
-    command = " ".join(["python3", f"experiments/{exp.name}.py"] + (["--quick"] if args.quick else []))
+    command = shlex.join(["python3", f"experiments/{exp.name}.py", *args.argv])
     rep = report.write_report(
         out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
         settings=run_settings, conclusions=analysis.conclusions,

@@ -295,6 +295,14 @@ class ExperimentEndToEndTest(TempDirTest):
         self.assertFalse((out / "renders").exists())
         self.assertIn("sbatch", stdout)
 
+    def test_spp_scale_and_dry_run(self):
+        _, stdout = self.run_experiment("channel_count", ["--dry-run", "--spp-scale", "0.5"])
+        lines = stdout.strip().splitlines()
+        self.assertEqual(len(lines), 2 + 6 + 1)  # reference seeds, wavelength counts, rgb
+        self.assertTrue(all(" --spp 2 " in l for l in lines[2:]))  # quick spp 4 halved
+        self.assertTrue(all(" --spp 8 " in l for l in lines[:2]))  # reference 16 halved
+        self.assertFalse((self.tmp / "out").exists())
+
     def test_missing_scene_fails_clearly(self):
         sys.path.insert(0, str(REPO / "experiments"))
         import thesis_reproduction
