@@ -31,7 +31,14 @@ IorSpec IorSpec::fromProperties(const Properties& p, const std::string& name, fl
     return s;
 }
 
+IorSpec IorSpec::fromIOR(const IOR& ior) {
+    IorSpec s;
+    s.ior_ = std::make_shared<const IOR>(ior);
+    return s;
+}
+
 float IorSpec::at(float lambda) const {
+    if (ior_) return ior_->eval(lambda);
     if (spectrum_) return spectrum_->eval(lambda);
     if (!perChannel_) return values_[0];
     std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
@@ -46,6 +53,7 @@ float IorSpec::at(float lambda) const {
 }
 
 float IorSpec::sample(const SampledWavelengths& wl, int k) const {
+    if (ior_) return ior_->sample(wl)[k];  // RGB mode: per-channel values exactly
     if (perChannel_ && wl.isRGB() && k < 3) return values_[k];  // the triple, unchanged
     return at(wl.lambda(k));
 }
@@ -70,7 +78,7 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
     FilmCoatingSpec s;
     s.extIor = p.getFloat("ext_ior", 1.0f);
     if (!(s.extIor > 0)) failAt(p.locationOf("ext_ior"), "ext_ior must be > 0, got ", s.extIor);
-    s.filmIor = IorSpec::fromProperties(p, "film_ior", 1.5f);
+    s.filmIor = IorSpec::fromIOR(readIOR(p, "film", "1.5"));
     s.filmK = IorSpec::fromProperties(p, "film_k", 0.0f);
     checkPositive(p, "film_ior", s.filmIor, false);
     checkPositive(p, "film_k", s.filmK, true);
@@ -79,13 +87,14 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
         failAt(p.locationOf("thickness"), "thickness must be >= 0 nm, got ", s.thickness->eval({}));
     for (int i = 1; i <= 8; ++i) {
         const std::string base = "layer" + std::to_string(i);
-        if (!p.has(base + "_ior")) {
+        const bool hasIor = p.has(base + "_ior") || p.has(base + "_cauchy_a") || p.has(base + "_sellmeier_b");
+        if (!hasIor) {
             if (p.has(base + "_thickness") || p.has(base + "_k"))
                 failAt(p.location(), base, "_ior is required when ", base, "_thickness or ", base, "_k is given");
             break;
         }
         ExtraLayer l;
-        l.ior = IorSpec::fromProperties(p, base + "_ior", 1.5f);
+        l.ior = IorSpec::fromIOR(readIOR(p, base, "1.5"));
         l.k = IorSpec::fromProperties(p, base + "_k", 0.0f);
         checkPositive(p, base + "_ior", l.ior, false);
         checkPositive(p, base + "_k", l.k, true);
@@ -93,7 +102,11 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
         if (!(l.thicknessNm >= 0)) failAt(p.locationOf(base + "_thickness"), base, "_thickness must be >= 0 nm");
         s.extra.push_back(l);
     }
-    s.substrateEta = IorSpec::fromProperties(p, etaName, defSubstrateEta);
+    const std::string etaStr(etaName);
+    if (!kName && etaStr.size() > 4 && etaStr.compare(etaStr.size() - 4, 4, "_ior") == 0)
+        s.substrateEta = IorSpec::fromIOR(readIOR(p, etaStr.substr(0, etaStr.size() - 4), std::to_string(defSubstrateEta)));
+    else
+        s.substrateEta = IorSpec::fromProperties(p, etaName, defSubstrateEta);
     checkPositive(p, etaName, s.substrateEta, false);
     if (kName && p.has("substrate_material")) {
         if (p.has(etaName) || p.has(kName))

@@ -11,6 +11,7 @@
 #include "core/arena.h"
 #include "core/properties.h"
 #include "core/texture.h"
+#include "materials/dispersion.h"
 #include "spectral/film_stack.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
@@ -25,6 +26,8 @@ public:
     IorSpec() = default;
     explicit IorSpec(float c) : values_(c) {}
     explicit IorSpec(SpectrumPtr s) : spectrum_(std::move(s)) {}
+    /// A dielectric index read by materials/dispersion.h readIOR (presets, Cauchy, Sellmeier, ...).
+    static IorSpec fromIOR(const IOR& ior);
     /// Read `name` (float, rgb triple or spectrum) from p; `def` when absent.
     static IorSpec fromProperties(const Properties& p, const std::string& name, float def,
                                   const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
@@ -38,6 +41,7 @@ private:
     vec3 values_{1.0f};
     vec3 lambdas_{645.0f, 525.0f, 445.0f};
     SpectrumPtr spectrum_;
+    std::shared_ptr<const IOR> ior_;
 };
 
 enum class FilmSubstrate { Conductor, Dielectric };
@@ -71,9 +75,12 @@ struct FilmCoatingSpec {
     void precomputeInternalReflectance(const vec3& rgbLambdas = vec3(645.0f, 525.0f, 445.0f));
 
     /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
+    /// where film_ior and layerN_ior accept every form of materials/dispersion.h readIOR —
+    /// float, preset name, rgb, spectrum, <prefix>_cauchy_a/_b, <prefix>_sellmeier_b/_c —,
     /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
     /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
-    /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0).
+    /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0,
+    /// and an etaName of the form "<prefix>_ior" is read with readIOR, e.g. "int_ior").
     /// With a kName, `substrate_material` may instead name a conductor preset (conductor_presets.h).
     static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                           float defThickness = 300.0f, const char* etaName = "substrate_eta",

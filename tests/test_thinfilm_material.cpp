@@ -442,3 +442,18 @@ TEST(ThinFilmMaterial, SmoothTransmissionConservesEnergyBothSides) {
                                        {"substrate_eta", RGBValue{vec3(1.5f, 1.52f, 1.55f)}}}),
                  Error);
 }
+
+TEST(ThinFilmMaterial, DispersiveFilmIndexFromSharedIORReader) {
+    // film_ior accepts every form of readIOR: Cauchy n(λ) = A + B/λ² (λ in µm) here, and presets.
+    const SampledWavelengths wl = spectralWl(0.15f, 6);
+    auto inst = makeBSDF("thinfilm", {{"film_cauchy_a", 1.45f}, {"film_cauchy_b", 0.0035f}, {"thickness", 700.0f}}, wl);
+    const auto s = inst.bsdf->sample(dirFromCos(0.75f), 0.5f, vec2(0.5f), TransportMode::Radiance);
+    for (int k = 0; k < wl.size(); ++k) {
+        const double um = wl.lambda(k) * 1e-3;
+        const double n = 1.45f + 0.0035f / (um * um);
+        EXPECT_NEAR(s->weight()[k], airySingleFilm(wl.lambda(k), 0.75f, 1.0, Layer{n, 700.0}, complexd(0.13f, 3.3f)).R(), 1e-5);
+    }
+    EXPECT_NO_THROW(makeBSDF("thinfilm", {{"film_ior", S("water")}}, wl));
+    EXPECT_NO_THROW(makeBSDF("iridescent_diffuse", {{"int_ior", S("bk7")}}, wl));
+    EXPECT_THROW(makeBSDF("thinfilm", {{"film_ior", S("kryptonite")}}, wl), Error);
+}
