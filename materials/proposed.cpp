@@ -34,6 +34,7 @@ class ProposedBSDF final : public BSDF {
 public:
     struct Params {
         const RoughTransmittanceTables* tables;
+        const RoughTransmittanceTables::Line* lines;  // per channel: table stencil of (η_c, α)
         MicrofacetDistribution dist;
         float alpha, etaI, d;
         Frame coat;        // frame of the top normal n0 (coat microfacet model)
@@ -58,10 +59,11 @@ public:
         if (wo.z <= 0 || wi.z <= 0) return f;
         const vec3 woC = toCoat(wo), wiC = toCoat(wi);
         if (woC.z <= 0 || wiC.z <= 0) return f;
+        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC);
         for (int c = 0; c < n; ++c) {
             const float eta = p_.eta[c];
-            const float s = roughCoatSpecular(p_.dist, woC, wiC, eta);
-            const float d = roughCoatDiffuse(*p_.tables, p_.alpha, eta, wiC.z, woC.z);
+            const float s = roughCoatSpecular(g, woC, eta);
+            const float d = roughCoatDiffuse(*p_.tables, p_.lines[c], eta, wiC.z, woC.z);
             const float fr = p_.ws[c] * s;     // eq. 3.15
             const float ft = wdEff_[c] * d;    // eq. 3.16
             if (p_.phase == PhaseMode::Off) {
@@ -89,7 +91,7 @@ public:
     float specularProbability(const vec3& woC) const {
         float t = 0.0f;
         const int n = p_.eta.size();
-        for (int c = 0; c < n; ++c) t += p_.tables->transmittance(p_.eta[c], p_.alpha, woC.z);
+        for (int c = 0; c < n; ++c) t += p_.tables->transmittance(p_.lines[c], woC.z);
         return roughCoatSpecularProbability(p_.ws.average(), p_.wd.average(), t / float(n));
     }
 
@@ -190,6 +192,10 @@ public:
         q.lambda = channelLambdas(wl, lambdas_);
         q.ws = clampZero(ws_->eval(sp.tex, wl));
         q.wd = clampZero(wd_->eval(sp.tex, wl));
+        using Line = RoughTransmittanceTables::Line;
+        auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(wl.size()), alignof(Line)));
+        for (int c = 0; c < wl.size(); ++c) new (&lines[c]) Line(tables_->line(q.eta[c], q.alpha));
+        q.lines = lines;
         return arena.make<ProposedBSDF>(q);
     }
 

@@ -210,18 +210,27 @@ float alphaCoord(float alpha, int n) {
 
 }  // namespace
 
-float RoughTransmittanceTables::transmittance(float eta, float alpha, float cosTheta) const {
+RoughTransmittanceTables::Line RoughTransmittanceTables::line(float eta, float alpha) const {
     const Stencil se = catmullRom(etaCoord(eta, res.nEta), res.nEta);
     const Stencil sa = catmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
-    const Stencil sm = catmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
-    float v = 0;  // eq. 2.44
+    Line l;
     for (int i = 0; i < se.count; ++i)
         for (int j = 0; j < sa.count; ++j) {
-            const float* line = &ext[(size_t(se.idx[i]) * res.nAlpha + sa.idx[j]) * res.nMu];
-            float lv = 0;
-            for (int k = 0; k < sm.count; ++k) lv += sm.w[k] * line[sm.idx[k]];
-            v += se.w[i] * sa.w[j] * lv;
+            l.offset[l.count] = (se.idx[i] * res.nAlpha + sa.idx[j]) * res.nMu;
+            l.weight[l.count++] = se.w[i] * sa.w[j];
         }
+    return l;
+}
+
+float RoughTransmittanceTables::transmittance(const Line& l, float cosTheta) const {
+    const Stencil sm = catmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
+    float v = 0;  // eq. 2.44
+    for (int i = 0; i < l.count; ++i) {
+        const float* row = &ext[size_t(l.offset[i])];
+        float lv = 0;
+        for (int k = 0; k < sm.count; ++k) lv += sm.w[k] * row[sm.idx[k]];
+        v += l.weight[i] * lv;
+    }
     return std::clamp(v, 0.0f, 1.0f);
 }
 

@@ -41,10 +41,21 @@ public:
     std::vector<float> ext;      // T(η, α, μ), index (iEta · nAlpha + iAlpha) · nMu + iMu
     std::vector<float> diffuse;  // Td(η, α), index iEta · nAlpha + iAlpha
 
+    /// The (η, α) part of the tricubic stencil, collapsed: up to 16 μ-lines of the table with their
+    /// weights. Lets a BSDF with fixed η, α look up T at several μ without recomputing it.
+    struct Line {
+        int offset[16];
+        float weight[16];
+        int count = 0;
+    };
+    Line line(float eta, float alpha) const;
+    /// T at μ = cosTheta on a prepared line (Catmull-Rom in μ).
+    float transmittance(const Line& l, float cosTheta) const;
+
     /// T(η, α, μ) by tricubic Catmull-Rom interpolation (eq. 2.44); arguments are clamped to
     /// the domain. T12 = transmittance(η, α, cosθi), T21 = transmittance(η, α, cosθo)
-    /// (eqs. 2.52–2.53).
-    float transmittance(float eta, float alpha, float cosTheta) const;
+    /// (eqs. 2.52–2.53). Same as transmittance(line(η, α), μ).
+    float transmittance(float eta, float alpha, float cosTheta) const { return transmittance(line(eta, alpha), cosTheta); }
     /// Td(η, α) by bicubic Catmull-Rom interpolation (eq. 2.51); Fdr = 1 − Td (eq. 2.54).
     float internalDiffuseTransmittance(float eta, float alpha) const;
 

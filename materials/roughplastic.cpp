@@ -21,7 +21,8 @@ class RoughPlasticBSDF final : public BSDF {
 public:
     RoughPlasticBSDF(const RoughTransmittanceTables* t, MicrofacetDistribution dist, float alpha, float eta,
                      const SampledSpectrum& ks, const SampledSpectrum& rho, bool nonlinear)
-        : t_(t), dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho), rhoAvg_(rho.average()) {
+        : t_(t), line_(t->line(eta, alpha)), dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho),
+          rhoAvg_(rho.average()) {
         const float fdr = 1.0f - t_->internalDiffuseTransmittance(eta_, alpha_);  // eq. 2.54
         for (int c = 0; c < rho.size(); ++c) rhoEff_[c] = roughCoatAlbedo(rho[c], fdr, nonlinear);
     }
@@ -29,14 +30,14 @@ public:
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
         SampledSpectrum f(ks_.size());
         if (wo.z <= 0 || wi.z <= 0) return f;
-        const float s = roughCoatSpecular(dist_, wo, wi, eta_);                  // eq. 2.36
-        const float d = roughCoatDiffuse(*t_, alpha_, eta_, wi.z, wo.z);         // eq. 2.55
+        const float s = roughCoatSpecular(roughCoatGeometry(dist_, wo, wi), wo, eta_);  // eq. 2.36
+        const float d = roughCoatDiffuse(*t_, line_, eta_, wi.z, wo.z);                 // eq. 2.55
         for (int c = 0; c < f.size(); ++c) f[c] = ks_[c] * s + rhoEff_[c] * d;   // eq. 2.56
         return f;
     }
 
     float specularProbability(const vec3& wo) const {
-        return roughCoatSpecularProbability(ks_.average(), rhoAvg_, t_->transmittance(eta_, alpha_, wo.z));
+        return roughCoatSpecularProbability(ks_.average(), rhoAvg_, t_->transmittance(line_, wo.z));
     }
 
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
@@ -68,6 +69,7 @@ public:
 
 private:
     const RoughTransmittanceTables* t_;
+    RoughTransmittanceTables::Line line_;  // table stencil of (η, α)
     MicrofacetDistribution dist_;
     float alpha_, eta_;
     SampledSpectrum ks_, rhoEff_;

@@ -18,20 +18,33 @@
 
 namespace iris {
 
-/// Specular microfacet reflection of the coat without weight: F D G / (4 μi μo)  (eq. 2.6/2.36).
-inline float roughCoatSpecular(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi, float eta) {
-    if (wo.z <= 0 || wi.z <= 0) return 0.0f;
-    vec3 h = wo + wi;
+/// The η-independent part of the coat's specular reflection: half vector h and D G/(4 μi μo).
+struct RoughCoatGeometry {
+    vec3 h{0, 0, 1};
+    float dg = 0.0f;
+};
+inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi) {
+    RoughCoatGeometry g;
+    if (wo.z <= 0 || wi.z <= 0) return g;
+    const vec3 h = wo + wi;
     const float len = glm::length(h);
-    if (!(len > 0)) return 0.0f;
-    h /= len;
-    const float F = fresnelDielectric(glm::dot(wo, h), eta);
-    return F * dist.D(h) * dist.G(wi, wo, h) / (4.0f * wi.z * wo.z);
+    if (!(len > 0)) return g;
+    g.h = h / len;
+    g.dg = dist.D(g.h) * dist.G(wi, wo, g.h) / (4.0f * wi.z * wo.z);
+    return g;
 }
 
-/// Diffuse path through the coat without the base albedo: T12 T21 / (π η²)  (eq. 2.55).
-inline float roughCoatDiffuse(const RoughTransmittanceTables& t, float alpha, float eta, float cosI, float cosO) {
-    return t.transmittance(eta, alpha, cosI) * t.transmittance(eta, alpha, cosO) * kInvPi / (eta * eta);
+/// Specular microfacet reflection of the coat without weight: F(wo·h, η) · D G/(4 μi μo)
+/// (eqs. 2.6, 2.36, 3.15).
+inline float roughCoatSpecular(const RoughCoatGeometry& g, const vec3& wo, float eta) {
+    return g.dg > 0 ? fresnelDielectric(glm::dot(wo, g.h), eta) * g.dg : 0.0f;
+}
+
+/// Diffuse path through the coat without the base albedo: T12 T21 / (π η²)  (eq. 2.55), on the
+/// table line of this (η, α).
+inline float roughCoatDiffuse(const RoughTransmittanceTables& t, const RoughTransmittanceTables::Line& line, float eta,
+                              float cosI, float cosO) {
+    return t.transmittance(line, cosI) * t.transmittance(line, cosO) * kInvPi / (eta * eta);
 }
 
 /// Effective base albedo ρ' (linear: ρ/(1 − Fdr); nonlinear: ρ/(1 − ρ Fdr)).
