@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -183,4 +184,18 @@ TEST(RoughPlasticTables, FullResolutionTablesRoundTripThroughTheCache) {
     ASSERT_TRUE(back.has_value()) << why;
     EXPECT_EQ(back->ext, built.ext);
     std::filesystem::remove_all(dir);
+}
+
+TEST(RoughPlasticTables, CacheDirectoryFromEnvironment) {
+    const char* old = std::getenv("IRIS_CACHE_DIR");
+    const std::string saved = old ? old : "";
+    ::setenv("IRIS_CACHE_DIR", "/tmp/iris_cache_env_test", 1);
+    EXPECT_EQ(roughTablesCacheDir(), "/tmp/iris_cache_env_test");
+    EXPECT_EQ(roughTablesCachePath(MicrofacetType::GGX, RoughTableResolution{}).rfind("/tmp/iris_cache_env_test/", 0), 0u);
+    ::unsetenv("IRIS_CACHE_DIR");
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const char* home = std::getenv("HOME");
+    if (xdg && *xdg) EXPECT_EQ(roughTablesCacheDir(), std::string(xdg) + "/iris");
+    else if (home && *home) EXPECT_EQ(roughTablesCacheDir(), std::string(home) + "/.cache/iris");
+    if (old) ::setenv("IRIS_CACHE_DIR", saved.c_str(), 1);
 }
