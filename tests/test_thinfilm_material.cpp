@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/registry.h"
 #include "materials/belcour_barla.h"
 #include "materials/conductor_presets.h"
 #include "materials/fresnel.h"
@@ -456,4 +457,29 @@ TEST(ThinFilmMaterial, DispersiveFilmIndexFromSharedIORReader) {
     EXPECT_NO_THROW(makeBSDF("thinfilm", {{"film_ior", S("water")}}, wl));
     EXPECT_NO_THROW(makeBSDF("iridescent_diffuse", {{"int_ior", S("bk7")}}, wl));
     EXPECT_THROW(makeBSDF("thinfilm", {{"film_ior", S("kryptonite")}}, wl), Error);
+}
+
+TEST(ThinFilmMaterial, ThicknessTexture) {
+    // thickness from a checkerboard float texture: 200 nm where (u, v) < 0.5, 500 nm elsewhere.
+    auto tex = std::make_shared<Properties>("texture", "checkerboard", SourceLocation{});
+    tex->set("color0", 200.0f, {});
+    tex->set("color1", 500.0f, {});
+    const SampledWavelengths wl0 = spectralWl(0.44f, 4);
+    for (const char* type : {"thinfilm", "iridescent_diffuse"}) {
+        auto props = makeProps(type, {{"film_ior", 1.7f}});
+        props->set("thickness", PropertiesPtr(tex), {});
+        const auto mat = MaterialRegistry::instance().create(*props);
+        Arena arena;
+        for (const auto& [uv, d] : {std::pair{vec2(0.25f, 0.25f), 200.0}, std::pair{vec2(0.75f, 0.25f), 500.0}}) {
+            ShadingPoint sp;
+            sp.tex.uv = uv;
+            SampledWavelengths wl = wl0;
+            const BSDF* b = mat->getBSDF(sp, wl, arena);
+            const auto s = b->sample(dirFromCos(0.8f), 0.0f, vec2(0.5f), TransportMode::Radiance);
+            ASSERT_TRUE(s && s->isSpecular());
+            const complexd sub = std::string(type) == "thinfilm" ? complexd(0.13f, 3.3f) : complexd(1.5, 0);
+            for (int k = 0; k < wl.size(); ++k)
+                EXPECT_NEAR(s->f[k] * 0.8f, airySingleFilm(wl.lambda(k), 0.8f, 1.0, Layer{1.7f, d}, sub).R(), 2e-6) << type;
+        }
+    }
 }
