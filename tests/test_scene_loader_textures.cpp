@@ -84,6 +84,8 @@ TEST(SceneLoaderTextures, BitmapFileSrgbDecoding) {
     EXPECT_NEAR(decoded->texel(0, 0), srgbToLinear(128.0f / 255.0f), 1e-5f);
     EXPECT_NEAR(raw->texel(0, 0), 128.0f / 255.0f, 1e-5f);
     EXPECT_NEAR(decoded->texel(1, 1), 1.0f, 1e-6f);
+    EXPECT_EQ(Bitmap::load(png, false), decoded);  // shared while in use
+    EXPECT_NE(Bitmap::loadUncached(png, false), decoded);
     // Float images are used as stored.
     Image f(1, 1, 3);
     f.at(0, 0, 0) = 0.25f;

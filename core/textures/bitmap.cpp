@@ -1,5 +1,8 @@
 #include "core/textures/bitmap.h"
 
+#include <map>
+#include <mutex>
+
 #include <OpenImageIO/imageio.h>
 
 #include "core/loader/xml_values.h"
@@ -13,6 +16,21 @@ Bitmap::Bitmap(Image img) : img_(std::move(img)) {
 }
 
 std::shared_ptr<const Bitmap> Bitmap::load(const std::string& path, bool raw) {
+    // Textures reading the same file (e.g. a colour and a roughness from one image) share it.
+    static std::mutex mutex;
+    static std::map<std::pair<std::string, bool>, std::weak_ptr<const Bitmap>> cache;
+    const auto key = std::make_pair(path, raw);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (auto hit = cache[key].lock()) return hit;
+    }
+    std::shared_ptr<const Bitmap> b = loadUncached(path, raw);
+    std::lock_guard<std::mutex> lock(mutex);
+    cache[key] = b;
+    return b;
+}
+
+std::shared_ptr<const Bitmap> Bitmap::loadUncached(const std::string& path, bool raw) {
     Image img = readImage(path);
     if (!raw) {
         bool integer = false, linearTag = false;

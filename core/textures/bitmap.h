@@ -29,8 +29,10 @@ public:
 
     /// Read through OpenImageIO. Unless `raw`, integer (8/16-bit) images not tagged as linear are
     /// decoded from sRGB to linear (Mitsuba's behaviour); float images are used as stored.
-    /// Errors name the file.
+    /// Errors name the file. Files already loaded (and still in use) with the same `raw` are shared.
     static std::shared_ptr<const Bitmap> load(const std::string& path, bool raw);
+    /// The same without the cache (always reads the file).
+    static std::shared_ptr<const Bitmap> loadUncached(const std::string& path, bool raw);
 
     int width() const { return img_.width; }
     int height() const { return img_.height; }
