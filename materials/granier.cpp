@@ -38,6 +38,9 @@ bool refractInto(const vec3& w, const vec3& n, float eta, vec3* t, float* cosT) 
     return true;
 }
 
+/// Phong lobe cos^e for cos > 0, zero otherwise (also for e = 0, where pow(0, 0) would be 1).
+inline float phongLobe(float cosine, float e) { return cosine > 0 ? std::pow(cosine, e) : 0.0f; }
+
 class GranierBSDF final : public BSDF {
 public:
     struct Params {
@@ -60,7 +63,7 @@ public:
         const float cosI = glm::dot(wi, p_.n0), cosO = glm::dot(wo, p_.n0);
         const bool film = cosI > 0 && cosO > 0;  // both directions see the top interface
         const vec3 wri = reflect(wi, p_.n0);     // ωri = 2(ωi·n0)n0 − ωi   (eq. 3.3)
-        const float lobeR = std::pow(std::max(0.0f, glm::dot(wri, wo)), p_.e0);
+        const float lobeR = phongLobe(glm::dot(wri, wo), p_.e0);
         for (int c = 0; c < n; ++c) {
             const float etaT = p_.etaT[c], lambda = p_.lambda[c];
             float fs = 0.0f;
@@ -74,7 +77,7 @@ public:
                 const float eta = p_.etaI / etaT;
                 if (refractInto(wi, p_.n0, eta, &wti, &cosTi) && refractInto(wo, p_.n0, eta, &wto, &cosTo)) {
                     const vec3 wrti = wti - 2.0f * glm::dot(wti, p_.n1) * p_.n1;  // eq. 3.4 (base mirror)
-                    const float lobeT = std::pow(std::max(0.0f, glm::dot(wrti, -wto)), p_.e1);
+                    const float lobeT = phongLobe(glm::dot(wrti, -wto), p_.e1);
                     const float Fto = fresnelSchlick(cosTo, f0);
                     ft = (1.0f - Fi) * lobeT * (1.0f - Fto);  // eq. 2.27
                     // Φ = π η_t d/λ ((ωti + ωto)·(−n0))   (eq. 2.28)
@@ -133,8 +136,7 @@ public:
         const float ps = lobeProbability(wo);
         float p = 0.0f;
         if (ps > 0) {
-            const float c = std::max(0.0f, glm::dot(reflect(wo, p_.n0), wi));
-            p += ps * (p_.e0 + 1.0f) * kInv2Pi * std::pow(c, p_.e0);
+            p += ps * (p_.e0 + 1.0f) * kInv2Pi * phongLobe(glm::dot(reflect(wo, p_.n0), wi), p_.e0);
         }
         p += (1.0f - ps) * std::max(0.0f, glm::dot(wi, p_.n1)) * kInvPi;
         return p;

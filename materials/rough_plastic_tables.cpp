@@ -22,7 +22,7 @@
 namespace iris {
 namespace {
 
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;  // 2: η = 1 node at 1 + 1e-4
 constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'R', 'P', 'T', 'B'};
 
 /// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n, Press et al.,
@@ -141,7 +141,10 @@ RoughTransmittanceTables buildRoughTables(MicrofacetType type, const RoughTableR
     const int lines = res.nEta * res.nAlpha;
     tbb::parallel_for(0, lines, [&](int line) {
         const int ie = line / res.nAlpha, ia = line % res.nAlpha;
-        const double eta = RoughTransmittanceTables::etaNode(ie, res.nEta);
+        // The η = 1 node is evaluated at 1 + 1e-4: T is discontinuous at (η → 1⁺, μ → 0) (grazing
+        // Fresnel reflectance → 1 for any η > 1, but 0 at η = 1), and the one-sided limit keeps
+        // specular + diffuse energy ≤ 1 for index-matched-ish coats at grazing angles.
+        const double eta = std::max(double(RoughTransmittanceTables::etaNode(ie, res.nEta)), 1.0 + 1e-4);
         const double alpha = RoughTransmittanceTables::alphaNode(ia, res.nAlpha);
         for (int im = 0; im < res.nMu; ++im)
             t.ext[size_t(line) * res.nMu + im] = float(std::clamp(

@@ -230,3 +230,15 @@ TEST(Granier, ImportanceModeIsTheAdjoint) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(fr[c], fi[c]);
     EXPECT_GT(reciprocityError(*inst.bsdf, 2000, 6, 1e-3f), 1e-3f);  // really not reciprocal
 }
+
+TEST(Granier, ZeroExponentLobesAreHemispheres) {
+    // e = 0: the Phong lobes are 1 on the hemisphere around their axis and 0 behind it (not
+    // pow(0, 0) = 1 everywhere), so the lobe pdf (e0+1)/(2π) integrates to 1.
+    auto inst = makeBSDF("granier", {{"e0", 0.0f}, {"e1", 0.0f}, {"n0", VectorValue{vec3(0.24192f, 0, 0.97030f)}}});
+    const vec3 wo = dirFromCos(0.5f, 0.3f);
+    const Estimate p = pdfIntegral(*inst.bsdf, wo);
+    EXPECT_LE(p.mean, 1.0 + 5 * p.stderr_);
+    Chi2Options opt;
+    const Chi2Result r = chi2Test(*inst.bsdf, wo, opt);
+    EXPECT_TRUE(r.passed) << r.message;
+}

@@ -118,3 +118,18 @@ TEST(RoughPlastic, RejectsBadParameters) {
     EXPECT_THROW(makeBSDF("roughplastic", {{"int_ior", 0.9f}}), Error);
     EXPECT_THROW(makeBSDF("plastic", {{"int_ior", -1.0f}}), Error);
 }
+
+TEST(RoughPlastic, NearlyIndexMatchedCoatAtGrazingConservesEnergy) {
+    // η → 1⁺ at grazing: specular F → 1 and the table's T(μo → 0) must go to 0 as well.
+    for (const char* dist : {"beckmann", "ggx"}) {
+        auto inst = makeBSDF("roughplastic", {{"distribution", std::string(dist)},
+                                              {"alpha", 1e-4f},
+                                              {"int_ior", 1.0001f},
+                                              {"ext_ior", 1.0f},
+                                              {"diffuse_reflectance", 1.0f}});
+        for (float c : {0.0002f, 0.002f, 0.05f}) {
+            const auto a = albedo(*inst.bsdf, dirFromCos(c), 100000);
+            EXPECT_LE(a[0].mean, 1.0 + 5 * a[0].stderr_ + 0.01) << dist << " cos " << c;
+        }
+    }
+}
