@@ -155,6 +155,11 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
 
 // ---- FilmCoating ----
 
+namespace {
+/// Textured thickness: negative, NaN or infinite values (e.g. from a bitmap) become 0 nm.
+double sanitizeThickness(float t) { return std::isfinite(t) ? std::max(0.0f, t) : 0.0; }
+}  // namespace
+
 FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena)
     : n_(wl.size()),
       nExtra_(int(spec.extra.size())),
@@ -162,7 +167,7 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
       mode_(spec.mode),
       belcourBarla_(wl.isRGB() && spec.rgbMode == FilmRGBMode::BelcourBarla),
       extIor_(spec.extIor),
-      thickness_(std::max(0.0f, spec.thickness->eval(q))) {
+      thickness_(sanitizeThickness(spec.thickness->eval(q))) {
     rgb_ = wl.isRGB();
     if (spec.rintCache) {
         const vec3& l = spec.rintCache->rgbLambdas;
@@ -177,7 +182,7 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
       bounces_(spec.bounces),
       mode_(spec.mode),
       extIor_(spec.extIor),
-      thickness_(std::max(0.0f, spec.thickness->eval(q))) {
+      thickness_(sanitizeThickness(spec.thickness->eval(q))) {
     init(spec, arena, [&](const IorSpec& s, int k) { return s.at(lambdas[k]); }, [&](int k) { return lambdas[k]; });
 }
 

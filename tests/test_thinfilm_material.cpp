@@ -5,7 +5,10 @@
 
 #include <cmath>
 
+#include "core/film.h"
 #include "core/registry.h"
+#include "core/renderer.h"
+#include "core/scene.h"
 #include "materials/belcour_barla.h"
 #include "materials/conductor_presets.h"
 #include "materials/fresnel.h"
@@ -15,6 +18,7 @@
 #include "spectral/film_coating.h"
 #include "spectral/film_stack.h"
 #include "tests/bsdf_test_util.h"
+#include "tests/render_test_scenes.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -482,4 +486,61 @@ TEST(ThinFilmMaterial, ThicknessTexture) {
                 EXPECT_NEAR(s->f[k] * 0.8f, airySingleFilm(wl.lambda(k), 0.8f, 1.0, Layer{1.7f, d}, sub).R(), 2e-6) << type;
         }
     }
+}
+
+// ---- End to end: white furnace through the renderer ----
+
+namespace {
+/// Mean and standard error of one channel over the central disk of the image (all sphere).
+std::pair<double, double> centralDisk(const Film& film, int channel) {
+    double s = 0, s2 = 0;
+    int n = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const float dx = (x + 0.5f) / film.width() - 0.5f, dy = (y + 0.5f) / film.height() - 0.5f;
+            if (std::sqrt(dx * dx + dy * dy) > 0.3f) continue;
+            const double v = film.pixel(x, y)[channel];
+            s += v;
+            s2 += v * v;
+            ++n;
+        }
+    const double m = s / n;
+    return {m, std::sqrt(std::max(0.0, s2 / n - m * m) / n)};
+}
+
+Film renderFurnace(MaterialPtr material, bool rgb) {
+    SceneDescription d = iris::testing::furnaceScene(1.0f, 20, 32);
+    d.shapes[0].material = std::move(material);
+    RenderOptions opt;
+    opt.rgbMode = rgb;
+    opt.spectralSamples = 4;
+    opt.seed = 3;
+    opt.threads = 2;
+    const Scene scene(std::move(d));
+    Film film(20, 20);
+    Renderer(scene, opt).render(film);
+    return film;
+}
+}  // namespace
+
+TEST(ThinFilmRender, LosslessFilmsAreInvisibleInTheWhiteFurnace) {
+    // A convex object that loses no energy reflects the uniform environment exactly: pixel value 1
+    // (RGB mode: every channel; spectral mode: Y of the XYZ film).
+    auto diffuse = makeProps("iridescent_diffuse", {{"reflectance", 1.0f}, {"thickness", 300.0f}, {"film_ior", 1.8f}});
+    auto bubble = makeProps("thinfilm", {{"substrate", S("dielectric")}, {"substrate_eta", 1.0f}, {"transmission", true},
+                                         {"film_ior", 1.33f}, {"thickness", 450.0f}});
+    for (const auto& props : {diffuse, bubble}) {
+        const MaterialPtr m = MaterialRegistry::instance().create(*props);
+        for (bool rgb : {true, false}) {
+            const Film film = renderFurnace(m, rgb);
+            for (int c : rgb ? std::vector<int>{0, 1, 2} : std::vector<int>{1}) {
+                const auto [mean, se] = centralDisk(film, c);
+                EXPECT_NEAR(mean, 1.0, 5 * se + 3e-3) << props->type() << " rgb=" << rgb << " c=" << c;
+            }
+        }
+    }
+    // Control: an absorbing film darkens the sphere (the test can fail).
+    auto lossy = makeProps("iridescent_diffuse", {{"reflectance", 1.0f}, {"thickness", 300.0f}, {"film_k", 0.2f}});
+    const Film film = renderFurnace(MaterialRegistry::instance().create(*lossy), true);
+    EXPECT_LT(centralDisk(film, 1).first, 0.95);
 }
