@@ -53,7 +53,7 @@ public:
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
         : rng_(mix64(seed ^ mix64(pixelIndex * 0x9e3779b97f4a7c15ull + sampleIndex)),
                mix64(pixelIndex) ^ seed) {}
-    explicit Sampler(uint64_t seed) : rng_(mix64(seed), seed) {}
+    explicit Sampler(uint64_t seed) : rng_(mix64(seed), mix64(seed ^ 0x5851f42d4c957f2dull)) {}
 
     float get1D() { return rng_.uniform(); }
     vec2 get2D() {
