@@ -175,6 +175,16 @@ TEST(SceneLoaderTextures, Checkerboard) {
     EXPECT_FLOAT_EQ(f->eval(q), 0.2f);  // Mitsuba defaults 0.4 / 0.2
     q.uv = {0.75f, 0.75f};
     EXPECT_FLOAT_EQ(f->eval(q), 0.4f);
+    // Mitsuba 0.6 uv scale and offset (after to_uv): u' = 2u + 0.5.
+    Properties po("texture", "checkerboard", kLoc);
+    po.set("uscale", 2.0f, kLoc);
+    po.set("uoffset", 0.5f, kLoc);
+    const FloatTexturePtr fo = FloatTextureRegistry::instance().create(po);
+    q.uv = {0.1f, 0.25f};  // u' = 0.7, v' = 0.25 → color1
+    EXPECT_FLOAT_EQ(fo->eval(q), 0.2f);
+    q.uv = {0.3f, 0.25f};  // u' = 1.1 → color0
+    EXPECT_FLOAT_EQ(fo->eval(q), 0.4f);
+    EXPECT_EQ(Bitmap::parseFilter("ewa", kLoc), Bitmap::Filter::Bilinear);
 }
 
 TEST(SceneLoaderTextures, TexturesInSceneFiles) {

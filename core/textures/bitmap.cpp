@@ -127,7 +127,9 @@ float Bitmap::lookupGrey(const vec2& uv, Filter f, Wrap w) const {
 Bitmap::Filter Bitmap::parseFilter(const std::string& s, const SourceLocation& loc) {
     if (s == "bilinear") return Filter::Bilinear;
     if (s == "nearest") return Filter::Nearest;
-    failAt(loc, "filter_type '", s, "' is not supported (supported: bilinear, nearest)");
+    // Mitsuba 0.6's mipmapped filters: approximated by bilinear (no mipmaps here).
+    if (s == "ewa" || s == "trilinear") return Filter::Bilinear;
+    failAt(loc, "filter_type '", s, "' is not supported (supported: bilinear, nearest; 0.6's ewa and trilinear act as bilinear)");
 }
 
 Bitmap::Wrap Bitmap::parseWrap(const std::string& s, const SourceLocation& loc) {
