@@ -7,12 +7,13 @@
 //   smooth: delta reflection with coefficient R_stack(λ, cosθo).
 // Default: reflection only, one-sided (zero for wo.z <= 0); for a dielectric substrate the
 // transmitted energy is absorbed (an opaque coated surface; docs/thin_film.md).
-// `transmission` = true (smooth, non-absorbing, non-dispersive dielectric substrate only): a
-// two-sided interface between the exterior and the substrate medium with delta reflection R and
-// delta refraction T of the stack, lit from either side (from below: the reversed stack), the
-// refracted direction by Snell's law between ext_ior and substrate_eta (the film's parallel layers
-// do not change it); radiance transport scales the refracted lobe by 1/η² (pbrt-v4 §9.5.2).
+// `transmission` = true (non-absorbing, non-dispersive dielectric substrate only): a two-sided
+// interface between the exterior and the substrate medium, lit from either side (from below: the
+// reversed stack). Smooth: delta reflection R and delta refraction T of the stack, the refracted
+// direction by Snell's law between ext_ior and substrate_eta (the film's parallel layers do not
+// change it), radiance transport scales the refracted lobe by 1/η² (pbrt-v4 §9.5.2);
 // substrate_eta = ext_ior gives a free-standing film (soap bubble): light passes straight through.
+// Rough: Walter et al. 2007 reflection + transmission with F → R_stack, 1 − F → T_stack.
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
@@ -124,13 +125,125 @@ private:
     FilmCoating coating_;
 };
 
+/// Rough film on a dielectric with reflection and transmission: Walter et al. 2007 (eqs. 20–21, the
+/// generalized half vector eq. 16, Jacobians eqs. 14 and 17; written with the relative index as in
+/// pbrt-v4 §9.7.3) with F → R_stack and 1 − F → T_stack at the microfacet angle, seen from the side
+/// of wo. Directions below the surface are handled by mirroring both to the upper side and swapping
+/// the media (the stack is then lit from the substrate side).
+class ThinFilmRoughTransmissionBSDF final : public BSDF {
+public:
+    ThinFilmRoughTransmissionBSDF(const FilmCoating& coating, const MicrofacetDistribution& dist)
+        : coating_(coating), dist_(dist) {}
+
+    uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFGlossy; }
+
+    SampledSpectrum eval(const vec3& woIn, const vec3& wiIn, TransportMode mode) const override {
+        const int n = coating_.size();
+        if (woIn.z == 0 || wiIn.z == 0) return SampledSpectrum(n);
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn, wi = inside ? -wiIn : wiIn;
+        const float etap = relativeEta(inside);  // η on wi's side (when transmitted) / η on wo's side
+        vec3 h;
+        float denom = 0;
+        if (!halfVector(wo, wi, etap, h, denom)) return SampledSpectrum(n);
+        SampledSpectrum R, T;
+        stackAt(inside, glm::dot(wo, h), R, T);
+        const float DG = dist_.D(h) * dist_.G(wi, wo, h);
+        if (!(DG > 0)) return SampledSpectrum(n);
+        if (wi.z > 0) return R * (DG / (4.0f * wo.z * wi.z));  // Walter eq. 20
+        // Walter eq. 21 / pbrt-v4 eq. 9.40: T D G |wi·h wo·h| / (|cosθi cosθo| (wi·h + wo·h/η')²), /η'² for radiance.
+        float ft = DG * std::abs(glm::dot(wi, h) * glm::dot(wo, h) / (wi.z * wo.z * denom * denom));
+        if (mode == TransportMode::Radiance) ft /= etap * etap;
+        return T * ft;
+    }
+
+    float pdf(const vec3& woIn, const vec3& wiIn, TransportMode) const override {
+        if (woIn.z == 0 || wiIn.z == 0) return 0.0f;
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn, wi = inside ? -wiIn : wiIn;
+        const float etap = relativeEta(inside);
+        vec3 h;
+        float denom = 0;
+        if (!halfVector(wo, wi, etap, h, denom)) return 0.0f;
+        const float pR = reflectProbability(inside, glm::dot(wo, h));
+        const float pm = dist_.pdf(wo, h);
+        if (wi.z > 0) return pR * pm / (4.0f * glm::dot(wo, h));                        // Walter eq. 14
+        return (1.0f - pR) * pm * std::abs(glm::dot(wi, h)) / (denom * denom);          // Walter eq. 17
+    }
+
+    std::optional<BSDFSample> sample(const vec3& woIn, float uc, const vec2& u, TransportMode mode) const override {
+        if (woIn.z == 0) return std::nullopt;
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn;
+        const vec3 m = dist_.sampleNormal(wo, u);
+        const float wom = glm::dot(wo, m);
+        if (wom <= 0) return std::nullopt;
+        const float pR = reflectProbability(inside, wom);
+        BSDFSample s;
+        vec3 wi;
+        if (uc < pR) {
+            wi = reflect(wo, m);
+            if (wi.z <= 0) return std::nullopt;
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {
+            const float etap = relativeEta(inside);
+            const float sin2T = (1.0f - wom * wom) / (etap * etap);
+            if (sin2T >= 1.0f) return std::nullopt;
+            const float cT = std::sqrt(1.0f - sin2T);
+            wi = -wo / etap + (wom / etap - cT) * m;  // refraction about m (pbrt-v4 eq. 9.21)
+            if (wi.z >= 0) return std::nullopt;
+            s.flags = kBSDFTransmission | kBSDFGlossy;
+            s.eta = etap;
+        }
+        s.wi = inside ? -wi : wi;
+        s.pdf = pdf(woIn, s.wi, mode);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(woIn, s.wi, mode);
+        return s;
+    }
+
+private:
+    /// η on the far side / η on wo's side.
+    float relativeEta(bool inside) const {
+        const float r = float(coating_.substrateIor(0).real() / coating_.extIor());
+        return inside ? 1.0f / r : r;
+    }
+    /// Half vector (reflection) or generalized half vector h ∝ η' wi + wo (transmission), h.z > 0;
+    /// false for degenerate or back-facing configurations (pbrt-v4 §9.7.4).
+    static bool halfVector(const vec3& wo, const vec3& wi, float etap, vec3& h, float& denom) {
+        const bool reflect = wi.z > 0;
+        h = reflect ? wo + wi : wi * etap + wo;
+        if (glm::dot(h, h) == 0) return false;
+        h = glm::normalize(h);
+        if (h.z < 0) h = -h;
+        if (glm::dot(h, wi) * wi.z < 0 || glm::dot(h, wo) * wo.z < 0) return false;
+        denom = reflect ? 0.0f : glm::dot(wi, h) + glm::dot(wo, h) / etap;
+        if (!reflect && denom == 0) return false;
+        return glm::dot(wo, h) > 0;
+    }
+    void stackAt(bool inside, float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
+        if (inside) coating_.fromBelowRT(cosTheta, R, T);
+        else coating_.reflectanceTransmittance(cosTheta, R, T);
+    }
+    float reflectProbability(bool inside, float cosTheta) const {
+        SampledSpectrum R, T;
+        stackAt(inside, cosTheta, R, T);
+        const float r = R.average(), t = T.average();
+        return r + t > 0 ? r / (r + t) : 1.0f;
+    }
+
+    FilmCoating coating_;
+    MicrofacetDistribution dist_;
+};
+
 class ThinFilmMaterial final : public Material {
 public:
     ThinFilmMaterial(FilmCoatingSpec spec, MicrofacetDistribution dist, bool smooth, bool transmission)
         : spec_(std::move(spec)), dist_(dist), smooth_(smooth), transmission_(transmission) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
-        if (transmission_) return arena.make<ThinFilmTransmissionBSDF>(FilmCoating(spec_, sp.tex, wl, arena));
+        if (transmission_ && smooth_) return arena.make<ThinFilmTransmissionBSDF>(FilmCoating(spec_, sp.tex, wl, arena));
+        if (transmission_) return arena.make<ThinFilmRoughTransmissionBSDF>(FilmCoating(spec_, sp.tex, wl, arena), dist_);
         return arena.make<ThinFilmBSDF>(FilmCoating(spec_, sp.tex, wl, arena), dist_, smooth_);
     }
 
@@ -164,7 +277,6 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
     if (transmission) {
         const SourceLocation loc = p.locationOf("transmission");
         if (substrate != "dielectric") failAt(loc, "transmission needs substrate = 'dielectric'");
-        if (!smooth) failAt(loc, "transmission is implemented for a smooth interface only (alpha = 0)");
         const float eta0 = spec.substrateEta.at(kLambdaMin);
         for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
             if (spec.substrateK.at(l) != 0) failAt(loc, "transmission needs a non-absorbing substrate (substrate_k = 0)");
