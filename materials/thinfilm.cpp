@@ -11,7 +11,7 @@
 // interface between the exterior and the substrate medium, lit from either side (from below: the
 // reversed stack). Smooth: delta reflection R and delta refraction T of the stack, the refracted
 // direction by Snell's law between ext_ior and substrate_eta (the film's parallel layers do not
-// change it), radiance transport scales the refracted lobe by 1/η² (pbrt-v4 §9.5.2);
+// change it), radiance transport scales the refracted lobe by 1/η² (pbrt-v4 ch. 9, non-symmetric scattering with refraction);
 // substrate_eta = ext_ior gives a free-standing film (soap bubble): light passes straight through.
 // Rough: Walter et al. 2007 reflection + transmission with F → R_stack, 1 − F → T_stack.
 #include "core/registry.h"
@@ -127,7 +127,7 @@ private:
 
 /// Rough film on a dielectric with reflection and transmission: Walter et al. 2007 (eqs. 20–21, the
 /// generalized half vector eq. 16, Jacobians eqs. 14 and 17; written with the relative index as in
-/// pbrt-v4 §9.7.3) with F → R_stack and 1 − F → T_stack at the microfacet angle, seen from the side
+/// pbrt-v4's rough dielectric, ch. 9) with F → R_stack and 1 − F → T_stack at the microfacet angle, seen from the side
 /// of wo. Directions below the surface are handled by mirroring both to the upper side and swapping
 /// the media (the stack is then lit from the substrate side).
 class ThinFilmRoughTransmissionBSDF final : public BSDF {
@@ -151,7 +151,7 @@ public:
         const float DG = dist_.D(h) * dist_.G(wi, wo, h);
         if (!(DG > 0)) return SampledSpectrum(n);
         if (wi.z > 0) return R * (DG / (4.0f * wo.z * wi.z));  // Walter eq. 20
-        // Walter eq. 21 / pbrt-v4 eq. 9.40: T D G |wi·h wo·h| / (|cosθi cosθo| (wi·h + wo·h/η')²), /η'² for radiance.
+        // Walter eq. 21 in pbrt-v4's relative-index form: T D G |wi·h wo·h| / (|cosθi cosθo| (wi·h + wo·h/η')²), /η'² for radiance.
         float ft = DG * std::abs(glm::dot(wi, h) * glm::dot(wo, h) / (wi.z * wo.z * denom * denom));
         if (mode == TransportMode::Radiance) ft /= etap * etap;
         return T * ft;
@@ -190,7 +190,7 @@ public:
             const float sin2T = (1.0f - wom * wom) / (etap * etap);
             if (sin2T >= 1.0f) return std::nullopt;
             const float cT = std::sqrt(1.0f - sin2T);
-            wi = -wo / etap + (wom / etap - cT) * m;  // refraction about m (pbrt-v4 eq. 9.21)
+            wi = -wo / etap + (wom / etap - cT) * m;  // refraction about m (Snell's law about m)
             if (wi.z >= 0) return std::nullopt;
             s.flags = kBSDFTransmission | kBSDFGlossy;
             s.eta = etap;
@@ -209,7 +209,7 @@ private:
         return inside ? 1.0f / r : r;
     }
     /// Half vector (reflection) or generalized half vector h ∝ η' wi + wo (transmission), h.z > 0;
-    /// false for degenerate or back-facing configurations (pbrt-v4 §9.7.4).
+    /// false for degenerate or back-facing configurations (as pbrt-v4's rough dielectric does).
     static bool halfVector(const vec3& wo, const vec3& wi, float etap, vec3& h, float& denom) {
         const bool reflect = wi.z > 0;
         h = reflect ? wo + wi : wi * etap + wo;

@@ -14,7 +14,7 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 enum class Pol { S, P };
 
-/// Tilted admittance used for polarisation `pol` (Macleod §2.2): y_s = q, y_p = q/ñ² (the p form
+/// Tilted admittance used for polarisation `pol` (Macleod ch. 2): y_s = q, y_p = q/ñ² (the p form
 /// is the impedance of the tangential H field; both give Born & Wolf's r_s, r_p as (y_i−y_j)/(y_i+y_j)).
 complexd admittance(Pol pol, complexd q, complexd ior) { return pol == Pol::S ? q : q / (ior * ior); }
 
@@ -42,13 +42,13 @@ struct AmpRT {
 
 AmpRT transferMatrix(Pol pol, double lambdaNm, double y0, double s, std::span<const Layer> layers,
                      complexd substrateIor) {
-    // Characteristic matrix of layer j for the e^{−iωt} convention (Born & Wolf 1.6(33); Macleod
-    // eq. 2.57 is the same with i → −i for his e^{+iωt}, ñ = n − ik), multiplied by e^{iδ}:
+    // Characteristic matrix of layer j for the e^{−iωt} convention (Born & Wolf §1.6.2; Macleod's
+    // ch. 2 form is the same with i → −i for his e^{+iωt}, ñ = n − ik), multiplied by e^{iδ}:
     //   e^{iδ} [[cos δ, −i sin δ / y], [−i y sin δ, cos δ]]
     //     = [[(1+E)/2, (1−E)/(2y)], [y(1−E)/2, (1+E)/2]],   E = e^{2iδ}, |E| ≤ 1 since Im δ ≥ 0.
     // (1−E)/(2y) and y(1−E)/2 are written through g = (E−1)/(2q): s: −g, −q²g; p: −ñ²g, −q²g/ñ².
     // [B; C] = Π_j M_j [1; y_sub]; r = (y0 B − C)/(y0 B + C); T = 4 y0 Re(y_sub)/|y0 B + C|² (Macleod
-    // eqs. 2.60–2.62), times |Π e^{iδ_j}|² for the scaling, which is tracked as a logarithm.
+    // ch. 2), times |Π e^{iδ_j}|² for the scaling, which is tracked as a logarithm.
     const double k0 = kTwoPi / lambdaNm;
     const complexd qSub = normalWaveNumber(substrateIor, s);
     const complexd ySub = admittance(pol, qSub, substrateIor);
@@ -107,7 +107,7 @@ FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT
     const complexd qt = normalWaveNumber(iorT, s);
     const complexd ni2(iorI * iorI, 0.0), nt2 = iorT * iorT;
     FresnelAmplitudes a;
-    // Born & Wolf §1.5.2, eqs. (20)–(21), with n cosθ = q.
+    // Born & Wolf §1.5.2 (Fresnel formulae), with n cosθ = q.
     const complexd ds = qi + qt;
     const complexd dp = nt2 * qi + ni2 * qt;
     a.rs = (qi - qt) / ds;
@@ -161,7 +161,7 @@ FilmInterfaces filmInterfaces(Pol pol, double lambdaNm, double cosThetaIncident,
     auto safe = [](complexd d) { return d == complexd(0.0, 0.0) ? complexd(1e-300, 0.0) : d; };
     const complexd d01 = safe(y0 + y1), d12 = safe(y1 + y2);
     FilmInterfaces f;
-    f.r01 = (y0 - y1) / d01;  // Born & Wolf 1.5(20)–(21) in admittance form
+    f.r01 = (y0 - y1) / d01;  // Born & Wolf §1.5.2 in admittance form
     f.r12 = (y1 - y2) / d12;
     // Tangential-field transmission t01 = 2y0/(y0+y1), t12 = 2y1/(y1+y2). T = Re(y2)/y0 |t|²; the
     // factor y0 is divided out analytically so that grazing incidence (y0 = 0) is exact.
@@ -196,7 +196,7 @@ FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double 
     for (int k = 0; k < 2; ++k) {
         const FilmInterfaces f =
             filmInterfaces(k == 0 ? Pol::S : Pol::P, lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
-        // Airy sum (Born & Wolf 7.6(14)): r = (r01 + r12 E)/(1 + r01 r12 E), Σ = 1/(1 + r01 r12 E).
+        // Airy sum (Born & Wolf §1.6.4): r = (r01 + r12 E)/(1 + r01 r12 E), Σ = 1/(1 + r01 r12 E).
         const complexd den = 1.0 + f.r01 * f.r12 * f.E;
         out[k].r = (f.r01 + f.r12 * f.E) / den;
         out[k].T = transmittance(f, 1.0 / den);
@@ -211,7 +211,7 @@ FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, do
     for (int k = 0; k < 2; ++k) {
         const FilmInterfaces f =
             filmInterfaces(k == 0 ? Pol::S : Pol::P, lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
-        // Partial geometric series Σ_{m=0}^{K−1} (r10 r12 E)^m with r10 = −r01 (Heavens §4.2):
+        // Partial geometric series Σ_{m=0}^{K−1} (r10 r12 E)^m with r10 = −r01 (Heavens ch. 4):
         // r_K = r01 + t01 t10 r12 E Σ,  t01 t10 = 1 − r01²;  t_K = t01 t12 e^{iδ} Σ.
         const complexd ratio = -f.r01 * f.r12 * f.E;
         complexd sum = 0.0, term = 1.0;
@@ -234,7 +234,7 @@ FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, d
         const double R01 = std::min(1.0, std::norm(f.r01)), R12 = std::min(1.0, std::norm(f.r12));
         const double a = std::norm(f.halfPhase);  // single-pass attenuation e^{−2 Im δ}
         const double T01 = 1.0 - R01, T12 = 1.0 - R12;
-        // Heavens §4.6: intensities of all internally reflected beams summed without phase.
+        // Heavens ch. 4: intensities of all internally reflected beams summed without phase.
         const double loop = R01 * R12 * a * a;  // R10 = R01
         const double den = 1.0 - loop;
         if (den <= 0) {  // both interfaces totally reflecting and lossless: nothing enters

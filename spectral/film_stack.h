@@ -4,9 +4,9 @@
 // k ≥ 0 meaning absorption, so a plane wave exp(i(k0 ñ·r − ωt)) decays when Im(ñ) > 0. For a
 // stack lit from a real incident medium n0 at angle θ0 the conserved tangential invariant is
 // s = n0 sinθ0 and every layer j has the normal wave number (divided by k0 = 2π/λ)
-//     q_j = ñ_j cosθ_j = sqrt(ñ_j² − s²),  branch Im(q_j) ≥ 0   (Born & Wolf §1.5.2, §13.2)
+//     q_j = ñ_j cosθ_j = sqrt(ñ_j² − s²),  branch Im(q_j) ≥ 0   (Born & Wolf §1.5, ch. 14)
 // so evanescent and absorbed waves decay into each layer. Tilted optical admittances
-// (Macleod, "Thin-Film Optical Filters", 4th ed., §2.2): y_s = q, y_p = q/ñ² (the p case is
+// (Macleod, "Thin-Film Optical Filters", 4th ed., ch. 2): y_s = q, y_p = q/ñ² (the p case is
 // written with the impedance of the tangential H field, which never divides by q and stays
 // finite at grazing incidence and at the critical angle). Every interface coefficient and the
 // characteristic matrices are expressed with these y.
@@ -36,7 +36,7 @@ struct FilmStackResult {
     double A() const { return 1.0 - R() - T(); }  // absorbed in the layers (≈0 for lossless stacks)
 };
 
-/// Amplitude Fresnel coefficients of one planar interface i→j (Born & Wolf §1.5.2, eqs. 20–21),
+/// Amplitude Fresnel coefficients of one planar interface i→j (Born & Wolf §1.5.2, Fresnel formulae),
 /// for the electric-field amplitudes: r_s = (q_i − q_j)/(q_i + q_j), t_s = 2q_i/(q_i + q_j),
 /// r_p = (ñ_j² q_i − ñ_i² q_j)/(ñ_j² q_i + ñ_i² q_j), t_p = 2 ñ_i ñ_j q_i/(ñ_j² q_i + ñ_i² q_j).
 /// (Born & Wolf's sign convention for r_p: r_p = r_s at normal incidence.)
@@ -54,7 +54,7 @@ FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT
 FilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT);
 
 /// Transfer-matrix (characteristic-matrix) method for any number of layers, top→bottom
-/// (Born & Wolf §1.6.2, Macleod §2.2). `cosThetaIncident` ∈ [0,1] in the real incident medium
+/// (Born & Wolf §1.6.2–1.6.4, Macleod ch. 2). `cosThetaIncident` ∈ [0,1] in the real incident medium
 /// `incidentIor` (> 0, may be denser than the substrate: total internal reflection is handled).
 /// Each layer matrix is scaled by e^{iδ_j} so that only e^{2iδ_j}, |e^{2iδ_j}| ≤ 1, appears
 /// (never e^{+κd}); the running vector is renormalised and its log scale tracked for T.
@@ -68,8 +68,8 @@ enum class FilmPhaseMode {
     Incoherent,  // phase-averaged sum of intensities
 };
 
-/// Closed-form Airy summation for one film (Born & Wolf §7.6.1, eqs. 7.6(14)–(15); Heavens,
-/// "Optical Properties of Thin Solid Films", §4.2):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
+/// Closed-form Airy summation for one film (Born & Wolf §1.6.4; Heavens,
+/// "Optical Properties of Thin Solid Films", ch. 4):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
 /// t = t01 t12 e^{iδ}/(1 + r01 r12 e^{2iδ}),  δ = 2π ñ1 d cosθ1 / λ.
 FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor);
@@ -83,7 +83,7 @@ FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, do
 
 /// Incoherent (phase-averaged) sum of intensities with the film's single-pass attenuation
 /// a = |e^{iδ}|² = e^{−2 Im δ}:  R = R01 + T01 T10 R12 a² / (1 − R10 R12 a²),
-/// T = T01 T12 a / (1 − R10 R12 a²)  (Heavens §4.6; Macleod §2.5). Interface transmittances are
+/// T = T01 T12 a / (1 − R10 R12 a²)  (Heavens ch. 4; Macleod ch. 2 on thick incoherent layers). Interface transmittances are
 /// 1 − R (exact for a lossless film; for an absorbing film the standard approximation).
 FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
                                      const Layer& film, complexd substrateIor);

@@ -15,7 +15,7 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 
 // Independent reference: unpolarised-split conductor Fresnel reflectance with the real-arithmetic
-// formulas of Born & Wolf §14.2 (as written in e.g. pbrt-v3 §8.2.1), relative index η + ik = ñ_t/n_i.
+// formulas of Born & Wolf ch. 14 (as written in e.g. pbrt-v3 §8.2.1), relative index η + ik = ñ_t/n_i.
 void bareFresnel(double cosI, double ni, complexd nt, double& Rs, double& Rp) {
     const double eta = nt.real() / ni, k = nt.imag() / ni;
     const double c2 = cosI * cosI, s2 = 1 - c2;
@@ -56,7 +56,7 @@ TEST(FilmStack, ZeroThicknessGivesBareFresnel) {
         if (sub.imag() == 0 && n0 * std::sqrt(1 - cosI * cosI) < sub.real() - 1e-6) {
             EXPECT_NEAR(tmm.Rs + tmm.Ts, 1.0, 1e-12);
             EXPECT_NEAR(tmm.Rp + tmm.Tp, 1.0, 1e-12);
-            // Field transmission amplitudes: T = Re(n_t cosθ_t)/(n_i cosθ_i) |t|² (Born & Wolf 1.5(34)).
+            // Field transmission amplitudes: T = Re(n_t cosθ_t)/(n_i cosθ_i) |t|² (Born & Wolf §1.5.3).
             const double s = n0 * std::sqrt(1 - cosI * cosI);
             const double qt = std::sqrt(sub.real() * sub.real() - s * s);
             if (cosI > 1e-3) {
@@ -98,7 +98,7 @@ TEST(FilmStack, HalfWaveLayerIsAbsentee) {
 }
 
 TEST(FilmStack, QuarterWaveCoating) {
-    // Macleod §3.2: R = ((n0 ns − n1²)/(n0 ns + n1²))² at the design wavelength, normal incidence.
+    // Macleod, antireflection-coatings chapter: R = ((n0 ns − n1²)/(n0 ns + n1²))² at the design wavelength, normal incidence.
     for (double n1 : {1.22, 1.38, 1.7, 2.35}) {
         for (double ns : {1.45, 1.52, 1.8}) {
             const double lambda = 550, n0 = 1.0;
@@ -197,7 +197,7 @@ TEST(FilmStack, TransferMatrixEqualsAiryForOneLayer) {
 }
 
 TEST(FilmStack, AiryMatchesRealFormulaForThickFilmsInLongDouble) {
-    // Born & Wolf 7.6(16) for real indices at normal incidence, evaluated in long double as the
+    // Born & Wolf §1.6.4 for real indices at normal incidence, evaluated in long double as the
     // reference for phase accuracy of thick films: R = (r01² + r12² + 2 r01 r12 cos 2δ)/(1 + r01² r12² + 2 r01 r12 cos 2δ).
     const long double n0 = 1, n1 = 1.45, n2 = 1.9;
     const long double r01 = (n0 - n1) / (n0 + n1), r12 = (n1 - n2) / (n1 + n2);
@@ -316,7 +316,7 @@ TEST(FilmStack, DenseGridIsFiniteAndBounded) {
 }
 
 TEST(FilmStack, FiftyLayerBraggMirror) {
-    // Quarter-wave stack (HL)^N H... at normal incidence (Macleod §5.2): for 2N layers HL on ns,
+    // Quarter-wave stack (HL)^N H... at normal incidence (Macleod, high-reflectance coatings): for 2N layers HL on ns,
     // R = ((1 − (ns/n0)(nH/nL)^{2N}) / (1 + (ns/n0)(nH/nL)^{2N}))².
     const double nH = 2.3, nL = 1.38, ns = 1.52, lambda = 600;
     for (int N : {1, 3, 5, 25}) {
