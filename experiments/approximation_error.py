@@ -89,7 +89,7 @@ class ApproximationError(Experiment):
             conclusions.append(
                 f"{label}: thicknesses where the excess exceeds the just-noticeable ΔE00 = {JND:g}: " +
                 (", ".join(f"{d} nm" for d in visible) if visible else "none") + ".")
-            figures.append(grid.image_grid(cells, ctx.out_dir / f"{label}_rgb_vs_spectral.png",
+            figures.append(grid.image_grid(cells, ctx.out_dir / f"{label}_rgb_vs_spectral.jpg",
                                            row_labels=["RGB", "spectral", "reference"],
                                            col_labels=[f"d = {d} nm" for d in THICKNESS_NM]))
             figures.append(grid.line_plot(

@@ -100,7 +100,7 @@ class ChannelCount(Experiment):
                     title=f"{label}: error vs wavelengths per path", logx=True, logy=True))
                 cells = [[j.output for j in tests] + [ref]]
                 figures.append(grid.image_grid(
-                    cells, ctx.out_dir / f"{label}_images.png",
+                    cells, ctx.out_dir / f"{label}_images.jpg",
                     col_labels=[f"N={r['wavelengths_per_path']}" if r["mode"] == "spectral" else "rgb mode"
                                 for r in rows if r["scene"] == label] + ["reference"]))
         cols = ["scene", "wavelengths_per_path", "spp", "render_time_s", "relmse", "relmse_x_time", "psnr",

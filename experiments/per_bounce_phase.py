@@ -118,7 +118,7 @@ class PerBouncePhase(Experiment):
                     f"thicknesses where the excess exceeds the just-noticeable ΔE00 = {JND:g}: " +
                     (", ".join(f"{d} nm" for d in visible) if visible else "none") + ".")
             cells = [[find("variants", n, d).output for d in thicknesses] for n in names]
-            figures.append(grid.image_grid(cells, ctx.out_dir / f"{label}_variants.png", row_labels=names,
+            figures.append(grid.image_grid(cells, ctx.out_dir / f"{label}_variants.jpg", row_labels=names,
                                            col_labels=[f"d = {d} nm" for d in thicknesses]))
             series = {n: (thicknesses, [r["de00_mean"] for r in mine if r["variant"] == n])
                       for n in names if n != reference}

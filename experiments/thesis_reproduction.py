@@ -107,7 +107,7 @@ class ThesisReproduction(Experiment):
                         f"{fig} {label}, {key}: neighbouring values change the image by mean ΔE00 {min(steps):.3g} .. "
                         f"{max(steps):.3g}; the largest change is {format_value(mine[i].settings[key])} → "
                         f"{format_value(mine[i + 1].settings[key])}.")
-            figures.append(grid.image_grid(cells, ctx.out_dir / f"sweep_{name}.png", row_labels=labels,
+            figures.append(grid.image_grid(cells, ctx.out_dir / f"sweep_{name}.jpg", row_labels=labels,
                                            col_labels=[f"{key} = {format_value(v)}" for v in values],
                                            title=f"{fig}: {key}"))
         # Table 4.5: time ratio proposed / Granier per (depth, spp).

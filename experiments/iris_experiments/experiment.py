@@ -203,7 +203,8 @@ def _run(exp: Experiment, args) -> int:
     collect.write_json({"experiment": exp.name, "settings": run_settings, "rows": analysis.rows},
                        out / "results.json")
     table = report.markdown_table(analysis.rows, analysis.columns)
-    command = shlex.join(["python3", f"experiments/{exp.name}.py", *args.argv])
+    # The command that renders and reports (a --collect-only run reports renders made by it).
+    command = shlex.join(["python3", f"experiments/{exp.name}.py", *[a for a in args.argv if a != "--collect-only"]])
     rep = report.write_report(
         out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
         settings=run_settings, conclusions=analysis.conclusions,

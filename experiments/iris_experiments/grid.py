@@ -28,7 +28,8 @@ def display_image(path: Path, exposure: float = 0.0) -> np.ndarray:
 
 def image_grid(cells, out_png: Path, row_labels=(), col_labels=(), title: str = "", cell_inches: float = 1.8,
                exposure: float = 0.0) -> Path:
-    """cells: list of rows, each a list of EXR paths (None = empty cell)."""
+    """cells: list of rows, each a list of EXR paths (None = empty cell). A .jpg output (quality 85)
+    keeps grids of noisy renders small enough to commit; .png is lossless."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -55,7 +56,10 @@ def image_grid(cells, out_png: Path, row_labels=(), col_labels=(), title: str = 
     fig.tight_layout()
     out_png = Path(out_png)
     out_png.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out_png, dpi=100)
+    if out_png.suffix.lower() in (".jpg", ".jpeg"):
+        fig.savefig(out_png, dpi=100, pil_kwargs={"quality": 85})
+    else:
+        fig.savefig(out_png, dpi=100)
     plt.close(fig)
     return out_png
 

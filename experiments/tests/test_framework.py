@@ -270,7 +270,7 @@ class ExperimentEndToEndTest(TempDirTest):
         best = min(spectral, key=lambda r: float(r["relmse"]))["wavelengths_per_path"]
         self.assertIn(f"lowest relMSE at N = {best}.", text)
         self.assertIn("## Machine", text)
-        self.assertTrue((out / "thin_film_images.png").stat().st_size > 1000)
+        self.assertTrue((out / "thin_film_images.jpg").stat().st_size > 1000)
         ref_meta = exr.read_exr_metadata(str(out / "reference" / "thin_film.exr"))
         self.assertEqual(ref_meta["iris.spp"], "32")  # 2 seeds x 16 spp merged
 
