@@ -132,9 +132,7 @@ MaterialStress roughplastic() {
         return P("roughplastic").str("distribution", dist).f("alpha", a).f("int_ior", eta).f("ext_ior", 1.0f);
     };
     return conserving({
-        {"beckmann a=1e-4 eta 1.0001", rp("beckmann", 1e-4f, 1.0001f).f("diffuse_reflectance", 1.0f), 1.6, 0.01f,
-         "grazing (> 89.4 deg) specular + diffuse albedo > 1: the diffuse term's rough transmittance T(eta, alpha, mu_o) "
-         "does not fall as the specular albedo rises (measured at 89.9 deg: glossy 0.61 + diffuse 0.66)"},
+        {"beckmann a=1e-4 eta 1.0001", rp("beckmann", 1e-4f, 1.0001f).f("diffuse_reflectance", 1.0f)},
         {"ggx a=1 eta 3", rp("ggx", 1.0f, 3.0f).f("diffuse_reflectance", 1.0f)},
         {"ggx a=0 (smooth) eta 1.5", rp("ggx", 0.0f, 1.5f).f("diffuse_reflectance", 1.0f)},
         {"beckmann a=0.3 nonlinear per-channel", rp("beckmann", 0.3f, 2.0f).boolean("nonlinear", true)
@@ -253,14 +251,14 @@ MaterialStress thinfilm() {
     for (int i = 1; i <= 8; ++i)
         many.f("layer" + std::to_string(i) + "_ior", i % 2 ? 2.4f : 1.38f)
             .f("layer" + std::to_string(i) + "_thickness", i % 2 ? 60.0f : 1e4f);
-    return conserving({
+    MaterialStress m = conserving({
         {"conductor d=0 smooth", tf("conductor", 0.0f)},
         {"conductor d=1e5 film 4 k 10 smooth", tf("conductor", 1e5f).f("film_ior", 4.0f).f("film_k", 10.0f)
                                                     .f("substrate_eta", 4.0f).f("substrate_k", 10.0f)},
         {"dielectric film 1.0001 ext 1.5 a=1e-4", tf("dielectric", 300.0f).f("film_ior", 1.0001f).f("ext_ior", 1.5f)
                                                       .f("alpha", 1e-4f), 1.25, 0.01f,
-         "alpha = 1e-4 at 89.99 deg: sample() returns the pdf of the sampled half vector but f = eval(wo, wi) at the half "
-         "vector recomputed from wo + wi, which float cancellation moves (pdf(wo, wi) / sample.pdf up to 16)"},
+         "alpha = 1e-4 at 89.99 deg: albedo 1.16 measured when sample() took f from eval(wo, wi) (half vector recomputed "
+         "from wo + wi, moved by float cancellation) but the pdf of the sampled normal"},
         {"dielectric substrate 4 a=1", tf("dielectric", 500.0f).f("film_ior", 1.33f).f("substrate_eta", 4.0f)
                                            .f("alpha", 1.0f)},
         {"per-channel film ior, beckmann aniso", tf("conductor", 400.0f).rgb("film_ior", 1.2f, 2.0f, 3.5f)
@@ -273,11 +271,16 @@ MaterialStress thinfilm() {
         {"belcour_barla rgb", tf("conductor", 1e4f).str("rgb_mode", "belcour_barla").f("film_ior", 2.5f)},
         {"9-layer stack", many},
     });
+    m.consistencyKnownIssue =
+        "sample() returns the pdf of the sampled microfacet normal, eval()/pdf() use the half vector recomputed from "
+        "wo + wi; they differ by > 1 % near grazing angles (float cancellation in wo + wi), up to 16x at 89.99 deg "
+        "with alpha 1e-4 and pdf(wo, wi) = 0 for some samples at alpha 0.3";
+    return m;
 }
 
 MaterialStress iridescentDiffuse() {
     auto id = [](float d) { return P("iridescent_diffuse").f("thickness", d); };
-    return conserving({
+    MaterialStress m = conserving({
         {"d=0 smooth", id(0.0f).f("reflectance", 1.0f)},
         {"d=1e5 film 4 k 10 binder 4", id(1e5f).f("film_ior", 4.0f).f("film_k", 10.0f).f("int_ior", 4.0f)
                                            .f("reflectance", 1.0f)},
@@ -291,6 +294,10 @@ MaterialStress iridescentDiffuse() {
          "with film_ior 3.5 and alpha 0.3 the albedo reaches 1.03 at normal incidence"},
         {"incoherent", id(2e4f).str("phase_mode", "incoherent").f("film_ior", 2.0f).f("reflectance", 1.0f)},
     });
+    m.consistencyKnownIssue =
+        "as thinfilm: sample() returns f and pdf of the sampled microfacet normal, eval()/pdf() use the half vector "
+        "recomputed from wo + wi; up to 2.3x apart at 89.99 deg with alpha 1e-4 (the weight f cos/pdf is consistent)";
+    return m;
 }
 
 MaterialStress twosided() {

@@ -33,6 +33,9 @@ struct MaterialStress {
     bool conservesEnergy = true; // assert albedo ≤ 1 + noise; otherwise report the excess only
     double generousBound = 1.0;  // for non-conserving materials: albedo must stay below this
     std::string note;            // why a material does not conserve energy (for the report)
+    // A measured, documented defect: sample() f/pdf differ from eval/pdf(wo, wi) by more than 1 %
+    // somewhere; consistency is then only reported (STRESS-CONSISTENCY), not asserted.
+    std::string consistencyKnownIssue;
     std::vector<StressCase> cases;
 };
 

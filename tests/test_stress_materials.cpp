@@ -10,7 +10,8 @@
 //     normal, cosθ = cos 89.99°, exactly on the horizon, 1e-7 from the normal, below the horizon),
 //     random samples with a share of 0 and 1−ε — in both transport modes:
 //       eval finite and ≥ 0; pdf finite and ≥ 0; sample(): wi finite and unit length, pdf > 0,
-//       f and the weight f·|cosθi|/pdf finite and ≥ 0;
+//       f and the weight f·|cosθi|/pdf finite and ≥ 0; for non-specular samples f and pdf equal
+//       eval(wo, wi) and pdf(wo, wi) to 1e-2 (maxima printed as "STRESS-CONSISTENCY");
 //   * directional albedo (mean of sample() weights) for several wo, both above and below the
 //     horizon: energy-conserving materials must stay ≤ 1 + 5σ + 2e-3 in importance transport
 //     (the adjoint: light arriving from wo, so the radiance-mode 1/η² factor of refraction does
@@ -161,7 +162,7 @@ TEST_P(MaterialStress, FiniteNonNegativeAndBoundedAlbedo) {
     const int albedoSets[] = {0, 3, 5};
 
     Failures fail;
-    AlbedoExtreme worst;
+    AlbedoExtreme worst, worstPdf{0, 0, ""}, worstF{0, 0, ""};
     std::vector<AlbedoExtreme> knownWorst(cfg.cases.size());
     long long queries = 0, albedoQueries = 0;
 
@@ -215,6 +216,27 @@ TEST_P(MaterialStress, FiniteNonNegativeAndBoundedAlbedo) {
                     if (badSpectrum(s->f)) fail.add(sw + " sampled f=" + str(s->f));
                     const SampledSpectrum w = s->weight();
                     if (badSpectrum(w)) fail.add(sw + " weight=" + str(w));
+                    // Consistency with eval/pdf for non-specular samples: relative difference ≤ 1e-2
+                    // (values below 1e-6 ignored), except inside a known defect's angular range.
+                    if (!s->isSpecular() && s->pdf > 0) {
+                        const bool known = (sc.knownAlbedoLimit > 0 && std::abs(wo.z) < sc.knownBelowCos) ||
+                                           !cfg.consistencyKnownIssue.empty();
+                        const float pq = bsdf->pdf(wo, s->wi, mode);
+                        const float rel = std::abs(pq - s->pdf) / std::max(pq, s->pdf);
+                        if (rel > worstPdf.mean) worstPdf = {rel, 0, sw};
+                        if (!known && rel > 1e-2f && std::max(pq, s->pdf) > 1e-6f)
+                            fail.add(sw + " sample.pdf=" + std::to_string(s->pdf) + " but pdf(wo, wi)=" + std::to_string(pq));
+                        const SampledSpectrum fq = bsdf->eval(wo, s->wi, mode);
+                        for (int k = 0; k < fq.size(); ++k) {
+                            const float m = std::max(fq[k], s->f[k]);
+                            const float r = m > 0 ? std::abs(fq[k] - s->f[k]) / m : 0.0f;
+                            if (r > worstF.mean) worstF = {r, 0, sw};
+                            if (!known && r > 1e-2f && m > 1e-6f) {
+                                fail.add(sw + " sample.f=" + str(s->f) + " but eval(wo, wi)=" + str(fq));
+                                break;
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -288,6 +310,10 @@ TEST_P(MaterialStress, FiniteNonNegativeAndBoundedAlbedo) {
               << worst.sigma << " | excess " << std::max(0.0, worst.mean - 1.0) << " | at " << worst.where << " | "
               << queries << " queries, " << albedoQueries << " albedo samples"
               << (cfg.note.empty() ? "" : " | " + cfg.note) << "\n";
+    std::cout << std::setprecision(3) << "STRESS-CONSISTENCY | " << name << " | max rel |pdf(wo,wi) - sample.pdf| "
+              << worstPdf.mean << (worstPdf.where.empty() ? "" : " at " + worstPdf.where)
+              << " | max rel |eval - sample.f| " << worstF.mean << (worstF.where.empty() ? "" : " at " + worstF.where)
+              << (cfg.consistencyKnownIssue.empty() ? "" : " | known: " + cfg.consistencyKnownIssue) << "\n";
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci)
         if (knownWorst[ci].mean >= 0)
             std::cout << std::setprecision(4) << "STRESS-KNOWN | " << name << " | max albedo " << knownWorst[ci].mean
