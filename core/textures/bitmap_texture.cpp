@@ -1,22 +1,25 @@
 // The `bitmap` texture (Mitsuba): an image looked up at the surface uv. Parameters: filename,
 // raw (false: 8/16-bit images are sRGB-decoded), filter_type (bilinear | nearest), wrap_mode
 // (repeat | mirror | clamp), to_uv. As a spectrum texture in RGB mode it returns the filtered
-// texel RGB unchanged; in spectral mode each texel's RGB is upsampled once (makeRGBSpectrum's
-// sigmoid fit, built lazily on the first spectral lookup and kept per texel) and the texels'
-// spectra are interpolated with the filter weights (as Mitsuba 3 does). Images above
-// kMaxPrecomputedTexels upsample the filtered RGB at every lookup instead (slower, no memory).
+// texel RGB unchanged; in spectral mode each texel's RGB is upsampled and the texels' spectra are
+// interpolated with the filter weights (as Mitsuba 3 does). Small images (at most
+// kMaxPerTexelFits texels) fit one sigmoid per texel, lazily on the first spectral lookup (≈ 34 µs
+// each); larger ones use the shared RGBSpectrumGrid (17³ node fits, built once per process, then
+// interpolated: the projection back to RGB stays exact, spectral/rgb_spectrum_grid.h).
 #include <mutex>
 
 #include "core/registry.h"
 #include "core/textures/bitmap.h"
 #include "core/textures/uv_transform.h"
 #include "spectral/rgb_spectrum.h"
+#include "spectral/rgb_spectrum_grid.h"
 #include "spectral/spectrum_factory.h"
 
 namespace iris {
 namespace {
 
-constexpr size_t kMaxPrecomputedTexels = size_t(1) << 21;
+constexpr size_t kMaxPerTexelFits = size_t(RGBSpectrumGrid::kResolution) * RGBSpectrumGrid::kResolution *
+                                    RGBSpectrumGrid::kResolution;
 
 struct BitmapParams {
     std::shared_ptr<const Bitmap> bitmap;
@@ -49,14 +52,18 @@ public:
             for (int i = 0; i < 3; ++i) s[i] = c[i];
             return s;
         }
-        if (size_t(b.width()) * size_t(b.height()) > kMaxPrecomputedTexels)
-            return makeRGBSpectrum(b.lookupRGB(uv, params_.filter, params_.wrap), kind_)->sample(wl);
+        const Bitmap::Footprint fp = b.footprint(uv, params_.filter, params_.wrap);
+        SampledSpectrum s(wl.size());
+        if (size_t(b.width()) * size_t(b.height()) > kMaxPerTexelFits) {
+            const RGBSpectrumGrid& grid = RGBSpectrumGrid::instance();
+            for (int i = 0; i < fp.count; ++i)
+                if (fp.weight[i] > 0) s += fp.weight[i] * grid.sample(b.texelRGB(fp.texel[i]), kind_, wl);
+            return s;
+        }
         std::call_once(once_, [&] {
             spectra_.reserve(size_t(b.width()) * size_t(b.height()));
             for (size_t t = 0; t < size_t(b.width()) * size_t(b.height()); ++t) spectra_.emplace_back(b.texelRGB(t), kind_);
         });
-        const Bitmap::Footprint fp = b.footprint(uv, params_.filter, params_.wrap);
-        SampledSpectrum s(wl.size());
         for (int i = 0; i < fp.count; ++i)
             if (fp.weight[i] > 0) s += fp.weight[i] * spectra_[fp.texel[i]].sample(wl);
         return s;
