@@ -64,13 +64,21 @@ public:
                 return s;
             }
             const vec3 m = dist_.sampleNormal(wo, u);
-            if (glm::dot(wo, m) <= 0) return std::nullopt;
+            const float wom = glm::dot(wo, m);
+            if (wom <= 0) return std::nullopt;
             s.wi = reflect(wo, m);
+            if (s.wi.z <= 0) return std::nullopt;
             s.flags = kBSDFReflection | kBSDFGlossy;
-        } else {
-            s.wi = sampleCosineHemisphere(u);
-            s.flags = kBSDFReflection | kBSDFDiffuse;
+            // Specular f and pdf at the sampled normal m (recomputing it from wo + wi cancels in
+            // float near grazing angles).
+            s.pdf = ps * dist_.pdf(wo, m) / (4.0f * wom) + (1.0f - ps) * cosineHemispherePdf(s.wi.z);
+            if (!(s.pdf > 0)) return std::nullopt;
+            const float DG = dist_.D(m) * dist_.G(s.wi, wo, m);
+            s.f = diffuse(wo, s.wi) + coating_.reflectance(wom) * (DG / (4.0f * wo.z * s.wi.z));
+            return s;
         }
+        s.wi = sampleCosineHemisphere(u);
+        s.flags = kBSDFReflection | kBSDFDiffuse;
         if (s.wi.z <= 0) return std::nullopt;
         s.pdf = pdfWith(wo, s.wi, ps);
         if (!(s.pdf > 0)) return std::nullopt;

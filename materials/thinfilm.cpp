@@ -57,7 +57,10 @@ public:
         if (s.wi.z <= 0) return std::nullopt;
         s.pdf = dist_.pdf(wo, m) / (4.0f * wom);  // half-vector → wi Jacobian (Walter 2007 eq. 14)
         if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, s.wi, mode);
+        // f and pdf both at the sampled normal m: recomputing it as normalize(wo + wi) cancels in
+        // float near grazing angles and would pair f and pdf of different normals.
+        const float DG = dist_.D(m) * dist_.G(s.wi, wo, m);
+        s.f = coating_.reflectance(wom) * (DG / (4.0f * wo.z * s.wi.z));
         return s;
     }
 
@@ -146,6 +149,61 @@ public:
         vec3 h;
         float denom = 0;
         if (!halfVector(wo, wi, etap, h, denom)) return SampledSpectrum(n);
+        return evalAt(wo, wi, h, denom, etap, inside, mode);
+    }
+
+    float pdf(const vec3& woIn, const vec3& wiIn, TransportMode) const override {
+        if (woIn.z == 0 || wiIn.z == 0) return 0.0f;
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn, wi = inside ? -wiIn : wiIn;
+        const float etap = relativeEta(inside);
+        vec3 h;
+        float denom = 0;
+        if (!halfVector(wo, wi, etap, h, denom)) return 0.0f;
+        return pdfAt(wo, wi, h, denom, inside);
+    }
+
+    std::optional<BSDFSample> sample(const vec3& woIn, float uc, const vec2& u, TransportMode mode) const override {
+        if (woIn.z == 0) return std::nullopt;
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn;
+        const vec3 m = dist_.sampleNormal(wo, u);
+        const float wom = glm::dot(wo, m);
+        if (wom <= 0) return std::nullopt;
+        const float pR = reflectProbability(inside, wom);
+        const float etap = relativeEta(inside);
+        BSDFSample s;
+        vec3 wi;
+        float denom = 0;
+        if (uc < pR) {
+            wi = reflect(wo, m);
+            if (wi.z <= 0) return std::nullopt;
+            s.flags = kBSDFReflection | kBSDFGlossy;
+        } else {
+            const float sin2T = (1.0f - wom * wom) / (etap * etap);
+            if (sin2T >= 1.0f) return std::nullopt;
+            const float cT = std::sqrt(1.0f - sin2T);
+            wi = -wo / etap + (wom / etap - cT) * m;  // refraction about m (Snell's law about m)
+            if (wi.z >= 0 || glm::dot(wi, m) >= 0) return std::nullopt;
+            denom = glm::dot(wi, m) + wom / etap;
+            if (denom == 0) return std::nullopt;
+            s.flags = kBSDFTransmission | kBSDFGlossy;
+            s.eta = etap;
+        }
+        // f and pdf at the sampled normal m (not recomputed from wo and wi, which cancels in float
+        // near grazing angles).
+        s.pdf = pdfAt(wo, wi, m, denom, inside);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = evalAt(wo, wi, m, denom, etap, inside, mode);
+        s.wi = inside ? -wi : wi;
+        return s;
+    }
+
+private:
+    /// f in the mirrored frame (wo.z > 0) for the microfacet normal h.
+    SampledSpectrum evalAt(const vec3& wo, const vec3& wi, const vec3& h, float denom, float etap, bool inside,
+                           TransportMode mode) const {
+        const int n = coating_.size();
         SampledSpectrum R, T;
         stackAt(inside, glm::dot(wo, h), R, T);
         const float DG = dist_.D(h) * dist_.G(wi, wo, h);
@@ -157,52 +215,14 @@ public:
         return T * ft;
     }
 
-    float pdf(const vec3& woIn, const vec3& wiIn, TransportMode) const override {
-        if (woIn.z == 0 || wiIn.z == 0) return 0.0f;
-        const bool inside = woIn.z < 0;
-        const vec3 wo = inside ? -woIn : woIn, wi = inside ? -wiIn : wiIn;
-        const float etap = relativeEta(inside);
-        vec3 h;
-        float denom = 0;
-        if (!halfVector(wo, wi, etap, h, denom)) return 0.0f;
+    /// pdf in the mirrored frame for the microfacet normal h.
+    float pdfAt(const vec3& wo, const vec3& wi, const vec3& h, float denom, bool inside) const {
         const float pR = reflectProbability(inside, glm::dot(wo, h));
         const float pm = dist_.pdf(wo, h);
         if (wi.z > 0) return pR * pm / (4.0f * glm::dot(wo, h));                        // Walter eq. 14
         return (1.0f - pR) * pm * std::abs(glm::dot(wi, h)) / (denom * denom);          // Walter eq. 17
     }
 
-    std::optional<BSDFSample> sample(const vec3& woIn, float uc, const vec2& u, TransportMode mode) const override {
-        if (woIn.z == 0) return std::nullopt;
-        const bool inside = woIn.z < 0;
-        const vec3 wo = inside ? -woIn : woIn;
-        const vec3 m = dist_.sampleNormal(wo, u);
-        const float wom = glm::dot(wo, m);
-        if (wom <= 0) return std::nullopt;
-        const float pR = reflectProbability(inside, wom);
-        BSDFSample s;
-        vec3 wi;
-        if (uc < pR) {
-            wi = reflect(wo, m);
-            if (wi.z <= 0) return std::nullopt;
-            s.flags = kBSDFReflection | kBSDFGlossy;
-        } else {
-            const float etap = relativeEta(inside);
-            const float sin2T = (1.0f - wom * wom) / (etap * etap);
-            if (sin2T >= 1.0f) return std::nullopt;
-            const float cT = std::sqrt(1.0f - sin2T);
-            wi = -wo / etap + (wom / etap - cT) * m;  // refraction about m (Snell's law about m)
-            if (wi.z >= 0) return std::nullopt;
-            s.flags = kBSDFTransmission | kBSDFGlossy;
-            s.eta = etap;
-        }
-        s.wi = inside ? -wi : wi;
-        s.pdf = pdf(woIn, s.wi, mode);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(woIn, s.wi, mode);
-        return s;
-    }
-
-private:
     /// η on the far side / η on wo's side.
     float relativeEta(bool inside) const {
         const float r = float(coating_.substrateIor(0).real() / coating_.extIor());
