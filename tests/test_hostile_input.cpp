@@ -351,6 +351,22 @@ TEST(HostileInput, MalformedXml) {
     expectError("self_include.xml", [&] { loadScene(self); }, self, {":2"});
 }
 
+TEST(HostileInput, ImageErrorsThroughTheSceneNameTheImageFile) {
+    const std::string exr = validExr("scene_valid.exr", 32, 16);
+    writeBytes("scene_truncated.exr", exr.substr(0, exr.size() / 2));
+    writeBytes("scene_huge.exr", withDataWindow(exr, 99999, 99999));
+    expectSceneErrors({
+        {"scene_bitmap_truncated.xml",
+         sceneXml("<bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" "
+                  "value=\"scene_truncated.exr\"/></texture></bsdf>"),
+         {"scene_truncated.exr"}},
+        {"scene_envmap_huge.xml",
+         "<scene version=\"3.0.0\">\n<emitter type=\"envmap\"><string name=\"filename\" value=\"scene_huge.exr\"/>"
+         "</emitter>\n</scene>\n",
+         {"scene_huge.exr"}},
+    });
+}
+
 TEST(HostileInput, MeshErrorsThroughTheSceneNameTheMeshFile) {
     writeBytes("scene_bad_mesh.ply", plyHeader("binary_little_endian", "1000000000000", "1"));
     expectSceneErrors({
