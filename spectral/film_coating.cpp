@@ -52,6 +52,13 @@ float IorSpec::at(float lambda) const {
     return lerp((lambda - pts[i].first) / span, pts[i].second, pts[i + 1].second);
 }
 
+SampledSpectrum IorSpec::sampleAll(const SampledWavelengths& wl) const {
+    if (ior_) return ior_->sample(wl);
+    SampledSpectrum r(wl.size());
+    for (int k = 0; k < wl.size(); ++k) r[k] = sample(wl, k);
+    return r;
+}
+
 float IorSpec::sample(const SampledWavelengths& wl, int k) const {
     if (ior_) return ior_->sample(wl)[k];  // RGB mode: per-channel values exactly
     if (perChannel_ && wl.isRGB() && k < 3) return values_[k];  // the triple, unchanged
@@ -173,7 +180,30 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
         const vec3& l = spec.rintCache->rgbLambdas;
         if (!rgb_ || (wl.lambda(0) == l[0] && wl.lambda(1) == l[1] && wl.lambda(2) == l[2])) rint_ = spec.rintCache.get();
     }
-    init(spec, arena, [&](const IorSpec& s, int k) { return s.sample(wl, k); }, [&](int k) { return wl.lambda(k); });
+    // Sample every index spectrum once for all wavelengths (IOR::sample is per spectrum, not per entry).
+    SampledSpectrum cache[4 + 2 * 8];
+    const IorSpec* keys[4 + 2 * 8];
+    int nKeys = 0;
+    auto add = [&](const IorSpec& s) {
+        if (nKeys == 4 + 2 * 8) return;  // more layers than the parser allows: sampled per entry below
+        keys[nKeys] = &s;
+        cache[nKeys++] = s.sampleAll(wl);
+    };
+    add(spec.filmIor);
+    add(spec.filmK);
+    add(spec.substrateEta);
+    add(spec.substrateK);
+    for (const auto& e : spec.extra) {
+        add(e.ior);
+        add(e.k);
+    }
+    init(spec, arena,
+         [&](const IorSpec& s, int k) {
+             for (int i = 0; i < nKeys; ++i)
+                 if (keys[i] == &s) return cache[i][k];
+             return s.sample(wl, k);
+         },
+         [&](int k) { return wl.lambda(k); });
 }
 
 FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena)

@@ -33,6 +33,8 @@ public:
                                   const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
     /// Value for entry k of a path's wavelengths.
     float sample(const SampledWavelengths& wl, int k) const;
+    /// Values for every entry of a path's wavelengths.
+    SampledSpectrum sampleAll(const SampledWavelengths& wl) const;
     /// Value at a wavelength (per-channel triples interpolated).
     float at(float lambda) const;
 
