@@ -582,6 +582,9 @@ def where_time_goes(ctx):
     return "\n".join(L)
 
 
+FILM_RE = r"film|airy|Film|Airy|thinfilm|ThinFilm|Iridescent|__divdc3|__muldc3|__csqrt|__cexp|hypot|sincos"
+
+
 def share(p, pattern):
     return sum(pct for pct, s in p["symbols"] if re.search(pattern, s))
 
@@ -604,21 +607,31 @@ def profile_comment(ctx, name, p):
             txt += " `LD_DEBUG=statistics`: " + "; ".join(st["ld_debug_statistics"][:4]) + "."
         return txt + "\n"
     if name.startswith("spectral"):
-        tf = share(p, r"film|airy|Film|Airy|complex|thinfilm|ThinFilm|Iridescent")
-        sp = share(p, r"exp|sin|cos|pow|sqrt|log")
-        return (f"Functions of the thin-film optics (film stack, Airy, complex arithmetic, thin-film BSDFs) account "
-                f"for {tf:.0f} % and libm transcendental functions for {sp:.0f} % of this profile: the "
-                "iridescent materials evaluate the film per wavelength, so their cost grows linearly with N while "
-                "traversal and the rest of the path do not.\n")
-    if name.startswith("thesis"):
-        return ""
+        tf = share(p, FILM_RE)
+        ior = share(p, r"IOR::eval|IorSpec")
+        return (f"The thin-film optics (film stack, Airy, coating, and the complex-arithmetic / libm helpers they call: "
+                f"`__divdc3`, `sincos`, `cexp`, `csqrt`, `hypot`) account for {tf:.0f} % of this profile, the "
+                f"per-wavelength index lookups (`IOR::eval`, `IorSpec`) for {ior:.0f} %. The iridescent materials "
+                "evaluate the film once per wavelength, so their cost grows linearly with N while traversal and the "
+                "rest of the path do not.\n")
+    if name.startswith("thesis_proposed"):
+        tab = share(p, r"RoughTransmittanceTables|catmullRom|roughCoatDiffuse")
+        own = share(p, r"Proposed")
+        return (f"Rough-coat table interpolation (`RoughTransmittanceTables::transmittance`/`line`, `catmullRom`, "
+                f"`roughCoatDiffuse`) takes {tab:.1f} % and the proposed BSDF's own functions {own:.1f} % of this run; "
+                "Granier's model (next profile) has no table look-ups.\n")
+    if name.startswith("thesis_granier"):
+        own = share(p, r"Granier|powf|__pow")
+        return f"Granier's BSDF functions and `powf` (its lobes) take {own:.1f} % of this run.\n"
     if name == "thinfilm_airy":
         cx = share(p, r"complex|__mul|__div|cexp|csqrt|sincos|exp|sqrt|hypot")
         return (f"Complex-double helpers and libm (`sincos`, `exp`, `sqrt`, `hypot`, complex multiply/divide) take "
                 f"{cx:.0f} % of the Airy profile.\n")
     if name.startswith("shading"):
         emb = sum(pct for pct, s in p["dsos"] if "embree" in s)
-        return f"Embree's share of the renderer's time: {emb:.0f} %; the rest is shading, sampling and film work.\n"
+        return (f"Embree's share of the renderer's time: {emb:.0f} %; the rest is shading, sampling and film work. "
+                "(The renderer's ray count includes its shadow rays, which are cheaper occlusion queries than the "
+                "bare benchmark's closest-hit rays, so the ratio if anything flatters the renderer.)\n")
     return ""
 
 
@@ -669,6 +682,29 @@ def wins_text(ctx):
                 L.append(f"- **Environment-map sampling** (core/sampling.cpp, `Distribution1D::sampleContinuous`, "
                          f"`Distribution2D::pdf`), profile `{name}`: {dist:.1f} %. Binary searches over the map's "
                          "CDFs; an alias table (O(1) sampling) would remove most of it.")
+    for name in [n for n in P if n.startswith("thesis_proposed")]:
+        p = P[name]
+        tab = share(p, r"RoughTransmittanceTables|catmullRom|roughCoatDiffuse")
+        gb = share(p, r"ProposedMaterial::getBSDF")
+        L.append(f"- **Proposed model: rough-coat table look-ups** (materials/proposed.cpp `ProposedMaterial::getBSDF` and "
+                 f"`ProposedBSDF`; materials/rough_plastic_tables.cpp), profile `{name}`: {tab:.1f} % in table "
+                 f"interpolation plus {gb:.1f} % in `getBSDF`. Per shading point `getBSDF` builds, per channel, a "
+                 "16-entry (η, α) stencil (`line`) and a bicubic Fdr; each `eval` then interpolates 16 μ-lines × 4 "
+                 "Catmull-Rom nodes per channel and direction. The interpolation is linear in the table values, so "
+                 "for a material with constant α and RGB-given η (the thesis setting, RGB mode: 3 fixed η) the 16 "
+                 "lines can be collapsed once per material into one μ-line of `nMu` values per channel (exact, "
+                 "same result), and Fdr cached: `eval` then reads 4 nodes instead of 64 and `getBSDF` does no "
+                 "table work. Expected gain: most of the table share above, i.e. most of the gap to Granier.")
+    for name in ["shading_overhead_default"]:
+        if name in P:
+            p = P[name]
+            wl = share(p, r"sampleVisible|__log1pf|__atanhf|__tanhf|__expm1f|__coshf")
+            if wl > 3:
+                L.append(f"- **Wavelength sampling** (spectral/wavelengths.cpp, `SampledWavelengths::sampleVisible` and "
+                         f"the visible pdf: `tanh`, `atanh`, `cosh`), profile `{name}`: {wl:.1f} % together with the "
+                         "libm `log1pf`/`expm1f` it calls (the blackbody's `expm1` also lands in libm, so this is an "
+                         "upper bound). Once per camera path; a tabulated inverse CDF and pdf (a few hundred floats) "
+                         "would make it a table read.")
     if "startup" in P:
         p = P["startup"]
         dl = sum(pct for pct, s in p["dsos"] if "ld-linux" in s)
@@ -694,7 +730,7 @@ def wins_text(ctx):
                  "already hoisted); it is inherent to the integrand, so there is no easy win beyond fewer nodes.")
     if "spectral_N32" in P:
         p = P["spectral_N32"]
-        tf = share(p, r"airy|Airy|film|Film|__divdc3|__csqrt|__cexp|hypot|sincos")
+        tf = share(p, FILM_RE)
         L.append(f"- **Spectral cost on the thin-film scene** is the film optics per wavelength: {tf:.0f} % of the "
                  "N=32 profile is in the film-stack code and its complex-arithmetic helpers (see the Airy item). "
                  "The RGB-mode run evaluates the same optics at 3 wavelengths, so the ratio to RGB grows with N "
