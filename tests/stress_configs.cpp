@@ -224,7 +224,7 @@ MaterialStress principled() {
 MaterialStress cloth() {
     auto c = [](float r) { return P("cloth").f("roughness", r); };
     return nonConserving(
-        10.0, "Charlie sheen lobe added on top of the wrapped diffuse term (no energy compensation)",
+        20.0, "Charlie sheen lobe added on top of the wrapped diffuse term (no energy compensation)",
         {
             {"r=1e-4 white", c(1e-4f).f("base_color", 1.0f).f("sheen_color", 1.0f)},
             {"r=1 white", c(1.0f).f("base_color", 1.0f).f("sheen_color", 1.0f)},
