@@ -124,6 +124,13 @@ TEST(RenderApp, BadInputGivesOneLineErrorAndNonZeroExit) {
     EXPECT_NE(r.stderrText.find("not_an_image.exr"), std::string::npos) << r.stderrText;
     EXPECT_NE(r.stderrText.find("bad_env.xml:2"), std::string::npos) << r.stderrText;
 
+    // A -D override the scene does not know would silently change nothing: it is an error.
+    const std::string small = tempPath("small_for_define.xml");
+    writeTextFile(small, kSmallScene);
+    r = runCommand(app + " " + small + " -o " + tempPath("x.exr") + " --quiet -D thickness=80");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.stderrText.find("no parameter 'thickness'"), std::string::npos) << r.stderrText;
+
     // Invalid option values.
     for (const std::string opt : {"--spp abc", "--spectral-samples 0", "--spectral-samples 33", "--mode cmyk", "--threads -1",
                                   "--rgb-wavelengths 1,2", "--bogus"}) {

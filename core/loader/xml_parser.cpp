@@ -38,12 +38,13 @@ struct FileContext {
 
 class XmlParser {
 public:
-    explicit XmlParser(const std::map<std::string, std::string>& defines) : params_(defines) {}
+    explicit XmlParser(const std::map<std::string, std::string>& defines) : params_(defines), defines_(defines) {}
 
     ParsedScene parseFile(const std::string& path) {
         scene_.sourceFile = path;
         includeFile(path, SourceLocation{});
         resolveRefs();
+        checkDefinesUsed(path);
         return std::move(scene_);
     }
 
@@ -51,10 +52,20 @@ public:
         scene_.sourceFile = "<string>";
         parseDocument(xml, "<string>", fs::path(baseDir.empty() ? "." : baseDir));
         resolveRefs();
+        checkDefinesUsed("<string>");
         return std::move(scene_);
     }
 
 private:
+    /// A command-line override (-D name=value) that the scene neither declares with <default> nor
+    /// uses as $name would silently change nothing: report it.
+    void checkDefinesUsed(const std::string& file) const {
+        for (const auto& [name, value] : defines_)
+            if (!declared_.count(name) && !used_.count(name))
+                failAt(SourceLocation{file, 0}, "-D ", name, "=", value, ": the scene has no parameter '", name,
+                       "' (no <default name=\"", name, "\"> and no $", name, ")");
+    }
+
     // ---------------------------------------------------------------- files and documents
     void includeFile(const std::string& path, const SourceLocation& from) {
         std::error_code ec;
@@ -137,6 +148,7 @@ private:
             while (j < raw.size() && (std::isalnum(static_cast<unsigned char>(raw[j])) || raw[j] == '_')) ++j;
             const std::string key = raw.substr(i + 1, j - i - 1);
             if (key.empty()) failAt(loc(n), "'$' without a parameter name in '", raw, "'");
+            used_.insert(key);
             const auto it = params_.find(key);
             if (it == params_.end())
                 failAt(loc(n), "undefined parameter '$", key, "' (define it with <default name=\"", key,
@@ -189,6 +201,7 @@ private:
             if (name.empty()) failAt(loc(n), "<default> with an empty name");
             const std::string value = requiredAttr(n, "value");
             params_.emplace(name, value);  // -D overrides and earlier defaults win
+            declared_.insert(name);
         } else if (tag == "include") {
             checkAttributes(n, {"filename"});
             const SourceLocation at = loc(n);
@@ -411,6 +424,9 @@ private:
     std::map<const Properties*, std::vector<const Properties*>> edges_;
     std::map<std::pair<const Properties*, const Properties*>, SourceLocation> refLocations_;
     std::map<std::string, std::string> params_;
+    const std::map<std::string, std::string> defines_;  // -D overrides as given
+    std::set<std::string> declared_;                    // names of <default> elements seen
+    mutable std::set<std::string> used_;                // names substituted as $name
     std::map<std::string, PropertiesPtr> ids_;
     std::vector<fs::path> searchPaths_;
     std::vector<FileContext> files_;
