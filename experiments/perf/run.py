@@ -239,7 +239,7 @@ def t2_spectral_cost(ctx):
 def t3_thesis_models(ctx):
     scene = os.path.join(SCENES, "thesis_pair.xml")
     res_px = "64" if ctx.quick else "128"
-    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 36, 3)
+    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 36, 5)
     # Warm-up: the proposed model acquires the rough tables (built once into IRIS_CACHE_DIR).
     ctx.render(scene, spp=1, mode="rgb", defines=["material=proposed", "res=16"])
     out = {}
