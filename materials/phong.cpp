@@ -77,9 +77,12 @@ private:
 };
 
 std::shared_ptr<Material> createPhong(const Properties& p) {
+    FloatTexturePtr exponent = p.getFloatTexture("exponent", 30.0f);
+    if (exponent->isConstant() && !(exponent->eval({}) >= 0))
+        failAt(p.locationOf("exponent"), "phong: exponent must be >= 0, got ", exponent->eval({}));
     return std::make_shared<PhongMaterial>(p.getSpectrumTexture("diffuse_reflectance", SpectrumKind::Reflectance, 0.5f),
                                            p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 0.2f),
-                                           p.getFloatTexture("exponent", 30.0f));
+                                           std::move(exponent));
 }
 
 }  // namespace
