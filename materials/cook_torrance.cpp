@@ -91,9 +91,12 @@ private:
 std::shared_ptr<Material> createCookTorrance(const Properties& p) {
     const float kd = p.getFloat("kd", 0.5f);
     if (!(kd >= 0 && kd <= 1)) failAt(p.locationOf("kd"), "cook_torrance: kd must be in [0, 1], got ", kd);
+    FloatTexturePtr roughness = p.getFloatTexture("roughness", 0.3f);
+    if (roughness->isConstant() && !(roughness->eval({}) >= 0))
+        failAt(p.locationOf("roughness"), "cook_torrance: roughness must be >= 0, got ", roughness->eval({}));
     return std::make_shared<CookTorranceMaterial>(p.getSpectrumTexture("albedo", SpectrumKind::Reflectance, 0.5f),
                                                   p.getSpectrumTexture("f0", SpectrumKind::Reflectance, 0.04f),
-                                                  p.getFloatTexture("roughness", 0.3f), kd,
+                                                  std::move(roughness), kd,
                                                   p.getBool("sample_visible", true));
 }
 
