@@ -56,6 +56,7 @@ private:
 
 std::shared_ptr<Material> createConductor(const Properties& p) {
     ConductorSpectra c = readConductor(p);
+    if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "conductor: ext_ior must be > 0, got ", c.extIOR);
     return std::make_shared<ConductorMaterial>(
         std::move(c), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }
