@@ -86,6 +86,11 @@ private:
 std::shared_ptr<Material> createRoughConductor(const Properties& p) {
     MicrofacetParams mp = MicrofacetParams::read(p, "beckmann", 0.1f);
     ConductorSpectra c = readConductor(p);
+    for (const auto& [t, name] : {std::pair{mp.alphaU.get(), p.has("alpha_u") ? "alpha_u" : "alpha"},
+                                  std::pair{mp.alphaV.get(), p.has("alpha_v") ? "alpha_v" : "alpha"}})
+        if (t->isConstant() && !(t->eval({}) >= 0))
+            failAt(p.locationOf(name), "roughconductor: ", name, " must be >= 0, got ", t->eval({}));
+    if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "roughconductor: ext_ior must be > 0, got ", c.extIOR);
     return std::make_shared<RoughConductorMaterial>(
         std::move(mp), std::move(c), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }
