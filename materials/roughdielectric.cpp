@@ -128,6 +128,14 @@ private:
 std::shared_ptr<Material> createRoughDielectric(const Properties& p) {
     MicrofacetParams mp = MicrofacetParams::read(p, "beckmann", 0.1f);
     IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
+    for (const auto& [t, name] : {std::pair{mp.alphaU.get(), p.has("alpha_u") ? "alpha_u" : "alpha"},
+                                  std::pair{mp.alphaV.get(), p.has("alpha_v") ? "alpha_v" : "alpha"}})
+        if (t->isConstant() && !(t->eval({}) >= 0))
+            failAt(p.locationOf(name), "roughdielectric: ", name, " must be >= 0, got ", t->eval({}));
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 10.0f)  // indices must be positive over the whole range
+        if (!(in.eval(l) > 0) || !(ext.eval(l) > 0))
+            failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "roughdielectric: int_ior and ext_ior must be > 0, got ",
+                   in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<RoughDielectricMaterial>(
         std::move(mp), std::move(in), std::move(ext),
         p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
