@@ -64,6 +64,10 @@ private:
 
 std::shared_ptr<Material> createThinDielectric(const Properties& p) {
     IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 10.0f)  // indices must be positive over the whole range
+        if (!(in.eval(l) > 0) || !(ext.eval(l) > 0))
+            failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "thindielectric: int_ior and ext_ior must be > 0, got ",
+                   in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<ThinDielectricMaterial>(
         std::move(in), std::move(ext), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
         p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
