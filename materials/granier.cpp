@@ -165,6 +165,8 @@ public:
         etaT_ = ChannelIOR::fromProperties(p, "eta_t", vec3(1.5f, 1.6f, 1.8f), lambdas_);
         if (!(etaI_ > 0) || !(etaT_.minValue() > 0)) failAt(p.location(), "granier: indices of refraction must be positive");
         thickness_ = p.getFloatTexture("thickness", 76.0f);
+        if (thickness_->isConstant() && !(thickness_->eval({}) >= 0))
+            failAt(p.locationOf("thickness"), "granier: thickness must be >= 0 nm, got ", thickness_->eval({}));
         e0_ = p.getFloat("e0", 130.0f);
         e1_ = p.getFloat("e1", 130.0f);
         if (!(e0_ >= 0) || !(e1_ >= 0)) failAt(p.location(), "granier: Phong exponents e0, e1 must be >= 0");
