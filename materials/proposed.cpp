@@ -156,6 +156,8 @@ public:
             failAt(p.location(), "proposed: eta_t/eta_i must lie in the tabulated range [", RoughTransmittanceTables::kEtaMin,
                    ", ", RoughTransmittanceTables::kEtaMax, "], got [", lo, ", ", hi, "]");
         thickness_ = p.getFloatTexture("thickness", 1000.0f);
+        if (thickness_->isConstant() && !(thickness_->eval({}) >= 0))
+            failAt(p.locationOf("thickness"), "proposed: thickness must be >= 0 nm, got ", thickness_->eval({}));
         alpha_ = p.getFloatTexture("alpha", 0.08f);
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
             c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
