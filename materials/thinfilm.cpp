@@ -286,6 +286,8 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
         failAt(p.locationOf("substrate"), "substrate must be 'conductor' or 'dielectric', got '", substrate, "'");
     }
     FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, defEta, defK);
+    // The truncated sum loops over `bounces` per evaluation: an absurd count would hang the render.
+    if (spec.bounces > 1000) failAt(p.locationOf("bounces"), "thinfilm: bounces must be in [0, 1000], got ", spec.bounces);
     const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
     const float alpha = p.getFloat("alpha", 0.0f);
     const float au = p.getFloat("alpha_u", alpha), av = p.getFloat("alpha_v", alpha);
