@@ -159,6 +159,9 @@ private:
 
 std::shared_ptr<Material> createIridescentDiffuse(const Properties& p) {
     FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
+    // The truncated sum loops over `bounces` per evaluation: an absurd count would hang the render.
+    if (spec.bounces > 1000)
+        failAt(p.locationOf("bounces"), "iridescent_diffuse: bounces must be in [0, 1000], got ", spec.bounces);
     if (p.getBool("cache_internal_reflectance", true)) spec.precomputeInternalReflectance();
     SpectrumTexturePtr rho = p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f);
     const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
