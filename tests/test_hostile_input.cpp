@@ -444,6 +444,13 @@ TEST(HostileInput, InvalidMaterialParametersNewlyValidated) {
          {":6", "roughness"}},
         {"new_phong_exponent.xml", b("phong", "<float name=\"exponent\" value=\"-3\"/>"), {":6", "exponent"}},
         {"new_granier_thickness.xml", b("granier", "<float name=\"thickness\" value=\"-5\"/>"), {":6", "thickness"}},
+        {"new_thinfilm_bounces.xml",
+         b("thinfilm", "<string name=\"phase_mode\" value=\"truncated\"/><integer name=\"bounces\" value=\"2000000000\"/>"),
+         {":6", "bounces"}},
+        {"new_iridescent_bounces.xml",
+         b("iridescent_diffuse",
+           "<string name=\"phase_mode\" value=\"truncated\"/><integer name=\"bounces\" value=\"2000000000\"/>"),
+         {":6", "bounces"}},
         {"new_proposed_thickness.xml", b("proposed", "<float name=\"thickness\" value=\"-5\"/>"), {":6", "thickness"}},
     });
 }
