@@ -19,12 +19,13 @@
 // for w = 0 without subsurface colour; the sheen lobe alone is reciprocal.
 #include "core/registry.h"
 #include "materials/cloth_distributions.h"
+#include "materials/cloth_sampling.h"
 #include "materials/material.h"
 
 namespace iris {
 namespace {
 
-class ClothBSDF final : public BSDF {
+class ClothBSDF final : public cloth::SqrtCosineSampledBSDF {
 public:
     ClothBSDF(const SampledSpectrum& base, const SampledSpectrum& sheen, const SampledSpectrum& subsurface,
               bool hasSubsurface, float alpha, float wrap, bool neubelt)
@@ -46,21 +47,6 @@ public:
         return f + sheen_ * (d * v);
     }
 
-    std::optional<BSDFSample> sample(const vec3& wo, float, const vec2& u, TransportMode mode) const override {
-        if (wo.z <= 0) return std::nullopt;
-        BSDFSample s;
-        s.wi = cloth::sampleSqrtCosineHemisphere(u);
-        s.pdf = cloth::sqrtCosineHemispherePdf(s.wi.z);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, s.wi, mode);
-        s.flags = kBSDFReflection | kBSDFGlossy;
-        return s;
-    }
-
-    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
-        if (wo.z <= 0 || wi.z < cloth::kMinCosTheta) return 0.0f;
-        return cloth::sqrtCosineHemispherePdf(wi.z);
-    }
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFDiffuse | kBSDFGlossy; }
 

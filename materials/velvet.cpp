@@ -10,12 +10,13 @@
 // the grazing peak. Reciprocal (symmetric in wo, wi). Sampling: p ∝ cos^(1/2)θ (cloth_distributions.h).
 #include "core/registry.h"
 #include "materials/cloth_distributions.h"
+#include "materials/cloth_sampling.h"
 #include "materials/material.h"
 
 namespace iris {
 namespace {
 
-class VelvetBSDF final : public BSDF {
+class VelvetBSDF final : public cloth::SqrtCosineSampledBSDF {
 public:
     VelvetBSDF(const SampledSpectrum& r, float sigma) : r_(r), sigma_(sigma) {}
 
@@ -23,20 +24,6 @@ public:
         if (wo.z <= 0 || wi.z < cloth::kMinCosTheta) return SampledSpectrum(r_.size());
         const vec3 h = glm::normalize(wo + wi);
         return r_ * (cloth::velvetD(sigma_, h.z) * cloth::neubeltV(wo.z, wi.z));
-    }
-    std::optional<BSDFSample> sample(const vec3& wo, float, const vec2& u, TransportMode mode) const override {
-        if (wo.z <= 0) return std::nullopt;
-        BSDFSample s;
-        s.wi = cloth::sampleSqrtCosineHemisphere(u);
-        s.pdf = cloth::sqrtCosineHemispherePdf(s.wi.z);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, s.wi, mode);
-        s.flags = kBSDFReflection | kBSDFGlossy;
-        return s;
-    }
-    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
-        if (wo.z <= 0 || wi.z < cloth::kMinCosTheta) return 0.0f;
-        return cloth::sqrtCosineHemispherePdf(wi.z);
     }
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy; }
 
