@@ -6,7 +6,7 @@ Two scenes answer it:
              eqs. 3.21–3.22), per_reflection (coherent sum over internal round trips, §5), and the
              phase switched off (phase = false, i.e. rough plastic; thesis §4.2.2);
   thin_film  the exact film-stack material `thinfilm` (docs/thin_film.md §2) with two_beam
-             (truncated, 1 round trip: the phase once), truncated_3, exact (Airy sum over every
+             (truncated, 1 round trip: the phase once), truncated_2, truncated_3, exact (Airy sum over every
              internal reflection) and incoherent (no interference),
 over the thesis' thicknesses (Fig. 4.2), in spectral mode. Each variant is compared with the
 scene's reference variant rendered with another seed, next to the noise floor (the reference
@@ -37,6 +37,7 @@ VARIANTS = {   # per scene: the variants (settings applied together) and the ref
                   {"name": "per_reflection", "phase_mode": "per_reflection", "phase": "true"},
                   {"name": "no_phase", "phase_mode": "total", "phase": "false"}], "per_reflection"),
     "thin_film": ([{"name": "two_beam", "phase_mode": "truncated", "bounces": 1},
+                   {"name": "truncated_2", "phase_mode": "truncated", "bounces": 2},
                    {"name": "truncated_3", "phase_mode": "truncated", "bounces": 3},
                    {"name": "exact", "phase_mode": "exact", "bounces": 1},
                    {"name": "incoherent", "phase_mode": "incoherent", "bounces": 1}], "exact"),
