@@ -282,11 +282,11 @@ class ExperimentEndToEndTest(TempDirTest):
                                  '    <default name="offset"')
         out, _ = self.run_experiment("per_bounce_phase", scene_text=text)
         rows = collect.read_csv(out / "results.csv")
-        self.assertEqual(len(rows), (3 + 4) * 3)  # variants of both scenes x quick thicknesses
+        self.assertEqual(len(rows), (3 + 5) * 3)  # variants of both scenes x quick thicknesses
         for r in rows:
             self.assertEqual(float(r["excess_de00_mean"]), 0.0)
         report_text = (out / "report.md").read_text()
-        self.assertEqual(report_text.count("just-noticeable ΔE00 = 1: none."), 2 + 3)  # all but the references
+        self.assertEqual(report_text.count("just-noticeable ΔE00 = 1: none."), 2 + 4)  # all but the references
 
     def test_slurm_and_dry_run_modes_do_not_render(self):
         out, stdout = self.run_experiment("approximation_error", ["--slurm"])
