@@ -62,6 +62,19 @@ public:
 protected:
     // BSDFs live in the Arena and are never destroyed: the destructor is trivial and non-virtual.
     ~BSDF() = default;
+
+    /// For samplers that choose wi from a mixture of lobes: the sample's pdf and f are this BSDF's
+    /// own pdf(wo, wi) and eval(wo, wi) (so sample, pdf and eval agree by construction); no sample
+    /// where that pdf is 0.
+    std::optional<BSDFSample> sampleFromEval(const vec3& wo, const vec3& wi, uint32_t flags, TransportMode mode) const {
+        BSDFSample s;
+        s.wi = wi;
+        s.pdf = pdf(wo, wi, mode);
+        if (!(s.pdf > 0)) return std::nullopt;
+        s.f = eval(wo, wi, mode);
+        s.flags = flags;
+        return s;
+    }
 };
 
 }  // namespace iris

@@ -55,13 +55,7 @@ public:
         } else {
             wi = sampleCosineHemisphere(u);
         }
-        BSDFSample s;
-        s.wi = wi;
-        s.pdf = pdf(wo, wi, mode);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, wi, mode);
-        s.flags = kBSDFReflection | (spec ? kBSDFGlossy : kBSDFDiffuse);
-        return s;
+        return sampleFromEval(wo, wi, kBSDFReflection | (spec ? kBSDFGlossy : kBSDFDiffuse), mode);
     }
     uint32_t flags() const override { return kBSDFReflection | kBSDFDiffuse | kBSDFGlossy; }
 

@@ -100,21 +100,19 @@ public:
         const vec3 woC = toCoat(wo);
         if (woC.z <= 0) return std::nullopt;
         const float ps = specularProbability(woC);
-        BSDFSample s;
+        vec3 wi;
+        uint32_t flags;
         if (uc < ps) {  // eqs. 3.23–3.25 (visible normals of the coat)
             const vec3 wiC = reflect(woC, p_.dist.sampleNormal(woC, u));
-            s.wi = p_.tilted0 ? p_.coat.toWorld(wiC) : wiC;
-            s.flags = kBSDFReflection | kBSDFGlossy;
+            wi = p_.tilted0 ? p_.coat.toWorld(wiC) : wiC;
+            flags = kBSDFReflection | kBSDFGlossy;
         } else {  // eqs. 3.27–3.28 (cosine lobe about n1)
             const vec3 l = sampleCosineHemisphere(u);
-            s.wi = p_.tilted1 ? Frame::fromNormal(p_.n1).toWorld(l) : l;
-            s.flags = kBSDFReflection | kBSDFDiffuse;
+            wi = p_.tilted1 ? Frame::fromNormal(p_.n1).toWorld(l) : l;
+            flags = kBSDFReflection | kBSDFDiffuse;
         }
-        if (s.wi.z <= 0) return std::nullopt;
-        s.pdf = pdf(wo, s.wi, mode);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, s.wi, mode);
-        return s;
+        if (wi.z <= 0) return std::nullopt;
+        return sampleFromEval(wo, wi, flags, mode);
     }
 
     /// Mixture density (eq. 3.30 with the selection probabilities): P p_spec + (1 − P) (wi·n1)/π.

@@ -43,20 +43,18 @@ public:
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
         if (wo.z <= 0) return std::nullopt;
         const float ps = specularProbability(wo);
-        BSDFSample s;
+        vec3 wi;
+        uint32_t flags;
         if (uc < ps) {
             const vec3 m = dist_.sampleNormal(wo, u);
-            s.wi = reflect(wo, m);
-            s.flags = kBSDFReflection | kBSDFGlossy;
+            wi = reflect(wo, m);
+            flags = kBSDFReflection | kBSDFGlossy;
         } else {
-            s.wi = sampleCosineHemisphere(u);
-            s.flags = kBSDFReflection | kBSDFDiffuse;
+            wi = sampleCosineHemisphere(u);
+            flags = kBSDFReflection | kBSDFDiffuse;
         }
-        if (s.wi.z <= 0) return std::nullopt;
-        s.pdf = pdf(wo, s.wi, mode);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = eval(wo, s.wi, mode);
-        return s;
+        if (wi.z <= 0) return std::nullopt;
+        return sampleFromEval(wo, wi, flags, mode);
     }
 
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
