@@ -659,7 +659,7 @@ def wins_text(ctx):
     """Candidate improvements, each backed by a share taken from this run's profiles."""
     P = ctx.profiles
     L = []
-    if "thinfilm_airy" in P:
+    if "thinfilm_airy" in P and share(P["thinfilm_airy"], r"__divdc3|__muldc3") > 2:
         p = P["thinfilm_airy"]
         div, cx = share(p, r"__divdc3|__muldc3"), share(p, r"__csqrt|__cexp|hypot|sincos")
         L.append(f"- **Complex division in the Airy formula** (spectral/film_stack.cpp, `airySingleFilm` and its "
@@ -674,8 +674,8 @@ def wins_text(ctx):
         if name in P:
             p = P[name]
             env, rgb, d65 = share(p, r"EnvMapLight::lookup"), share(p, r"RGBSpectrum::eval"), share(p, r"cie::d65")
-            dist = share(p, r"Distribution1D|Distribution2D")
-            if env + rgb + d65 > 5:
+            dist = share(p, r"Distribution1D::sampleContinuous|Distribution2D::pdf")
+            if rgb + d65 > 3:
                 L.append(f"- **Spectral environment-map lookup** (core/lights/envmap_light.cpp, `EnvMapLight::lookup`), "
                          f"profile `{name}`: `lookup` {env:.1f} % + `RGBSpectrum::eval` {rgb:.1f} % + `cie::d65` {d65:.1f} % "
                          "of the renderer's time. Each lookup evaluates 8 grid-corner spectra (virtual calls, sigmoid "
@@ -691,6 +691,8 @@ def wins_text(ctx):
         p = P[name]
         tab = share(p, r"RoughTransmittanceTables|catmullRom|roughCoatDiffuse")
         gb = share(p, r"ProposedMaterial::getBSDF")
+        if tab < 5:
+            continue
         L.append(f"- **Proposed model: rough-coat table look-ups** (materials/proposed.cpp `ProposedMaterial::getBSDF` and "
                  f"`ProposedBSDF`; materials/rough_plastic_tables.cpp), profile `{name}`: {tab:.1f} % in table "
                  f"interpolation plus {gb:.1f} % in `getBSDF`. Per shading point `getBSDF` builds, per channel, a "
@@ -710,11 +712,11 @@ def wins_text(ctx):
                          "libm `log1pf`/`expm1f` it calls (the blackbody's `expm1` also lands in libm, so this is an "
                          "upper bound). Once per camera path; a tabulated inverse CDF and pdf (a few hundred floats) "
                          "would make it a table read.")
-    if "startup" in P:
+    per = ctx.m.get("startup", {}).get("direct_libraries", {})
+    oiio = {k: v for k, v in per.items() if "OpenImageIO." in k or k.startswith("libOpenImageIO.so")}
+    if "startup" in P and oiio:
         p = P["startup"]
         dl = sum(pct for pct, s in p["dsos"] if "ld-linux" in s)
-        per = ctx.m.get("startup", {}).get("direct_libraries", {})
-        oiio = {k: v for k, v in per.items() if "OpenImageIO." in k or k.startswith("libOpenImageIO.so")}
         L.append(f"- **Start-up is dynamic linking** ({dl:.0f} % of the start-up profile in `ld-linux`): "
                  + (f"`{next(iter(oiio))}` alone brings {next(iter(oiio.values()))} shared libraries "
                     "(its image-format plug-ins: DICOM, video, JPEG-XL, ...). " if oiio else "")
