@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "materials/belcour_barla.h"
 #include "materials/conductor_presets.h"
+#include "spectral/film_airy.h"
 
 namespace iris {
 
@@ -231,6 +232,13 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, L
             new (row + 1 + j) Layer{complexd(ior(e.ior, k), ior(e.k, k)), e.thicknessNm};
         }
     }
+    if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
+        auto* airy = static_cast<AiryEntry*>(arena.allocate(sizeof(AiryEntry) * n_, alignof(AiryEntry)));
+        for (int k = 0; k < n_; ++k)
+            new (airy + k) AiryEntry{airyFilmConstants(lambda_[k], layers_[k]), squaredIndex(substrate_[k])};
+        airy_ = airy;
+        extSq_ = squaredIndex(complexd(extIor_, 0.0));
+    }
 }
 
 namespace {
@@ -245,6 +253,10 @@ FilmStackResult clampEnergy(FilmStackResult r) {
 }  // namespace
 
 FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
+    if (airy_) {  // exact single film: hoisted constants, fast path (falls back below on degenerate cases)
+        FilmStackResult r;
+        if (airySingleFilmFast(cosTheta, extIor_, airy_[k].film, airy_[k].substrate, r)) return clampEnergy(r);
+    }
     const int stride = 1 + nExtra_;
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
@@ -254,6 +266,10 @@ FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
 FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     const int stride = 1 + nExtra_;
     const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
+    if (airy_) {
+        FilmStackResult r;
+        if (airySingleFilmFast(cosTheta, inc, airy_[k].film, extSq_, r)) return clampEnergy(r);
+    }
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
     Layer rev[9];
@@ -261,8 +277,25 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
 }
 
+/// Exact single film at entry k from the hoisted constants (airy_ set): the inlined fast kernel with
+/// the same clamps as stackRT, the general per-entry path when the kernel declines.
+inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below) const {
+    FilmStackResult r;
+    const bool ok = below ? airySingleFilmFastInline(cosTheta, substrate_[k].real(), airy_[k].film, extSq_, r)
+                          : airySingleFilmFastInline(cosTheta, extIor_, airy_[k].film, airy_[k].substrate, r);
+    if (!ok) return below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta);
+    // clampEnergy: Rs, Rp ∈ [0, 1] and Ts, Tp ≥ 0 hold already; T ≤ 1 − R.
+    r.Ts = std::min(r.Ts, 1.0 - r.Rs);
+    r.Tp = std::min(r.Tp, 1.0 - r.Rp);
+    return r;
+}
+
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
+    if (airy_ && !belcourBarla_) {
+        for (int k = 0; k < n_; ++k) R[k] = float(exactAt(k, cosTheta, false).R());
+        return R;
+    }
     for (int k = 0; k < n_; ++k) {
         if (belcourBarla_)
             R[k] = float(belcourBarlaReflectance(k, cosTheta, extIor_, film_[k].real(), thickness_, substrate_[k]));
@@ -275,6 +308,14 @@ SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
 void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
+    if (airy_ && !belcourBarla_) {
+        for (int k = 0; k < n_; ++k) {
+            const FilmStackResult r = exactAt(k, cosTheta, false);
+            R[k] = float(r.R());
+            T[k] = float(r.T());
+        }
+        return;
+    }
     for (int k = 0; k < n_; ++k) {
         const FilmStackResult r = stackRT(k, cosTheta);
         R[k] = float(r.R());
@@ -291,7 +332,7 @@ void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectru
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
     for (int k = 0; k < n_; ++k) {
-        const FilmStackResult r = stackRTFromBelow(k, cosTheta);
+        const FilmStackResult r = airy_ ? exactAt(k, cosTheta, true) : stackRTFromBelow(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
     }

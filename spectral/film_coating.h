@@ -128,6 +128,7 @@ public:
     complexd substrateIor(int k) const { return substrate_[k]; }
 
 private:
+    FilmStackResult exactAt(int k, double cosTheta, bool below) const;
     template <typename IorAt, typename LambdaAt>
     void init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda);
 
@@ -139,6 +140,14 @@ private:
     complexd film_[kMaxWavelengths];
     complexd substrate_[kMaxWavelengths];
     Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
+    /// Exact mode with a single film: the angle-independent Airy constants per entry (arena),
+    /// hoisted out of every evaluation (film_stack.h airySingleFilmFast); nullptr otherwise.
+    struct AiryEntry {
+        AiryFilmConstants film;
+        SquaredIndex substrate;
+    };
+    const AiryEntry* airy_ = nullptr;
+    SquaredIndex extSq_;  // the exterior as the "substrate" of the reversed stack (fromBelow)
     const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;
 };
