@@ -19,6 +19,8 @@
 #include "materials/microfacet.h"
 #include "spectral/film_coating.h"
 
+#include <limits>
+
 namespace iris {
 namespace {
 
@@ -241,9 +243,18 @@ private:
         if (!reflect && denom == 0) return false;
         return glm::dot(wo, h) > 0;
     }
+    /// The stack at the microfacet angle from wo's side. sample() needs it three times at the same
+    /// angle (lobe choice, pdf, f) and light sampling twice (eval, pdf): the last result is kept and
+    /// reused for the same (side, cosθ) — identical values; the BSDF belongs to one path/thread.
     void stackAt(bool inside, float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
-        if (inside) coating_.fromBelowRT(cosTheta, R, T);
-        else coating_.reflectanceTransmittance(cosTheta, R, T);
+        if (!(cosTheta == cacheCos_ && inside == cacheInside_)) {
+            if (inside) coating_.fromBelowRT(cosTheta, cacheR_, cacheT_);
+            else coating_.reflectanceTransmittance(cosTheta, cacheR_, cacheT_);
+            cacheCos_ = cosTheta;
+            cacheInside_ = inside;
+        }
+        R = cacheR_;
+        T = cacheT_;
     }
     float reflectProbability(bool inside, float cosTheta) const {
         SampledSpectrum R, T;
@@ -254,6 +265,9 @@ private:
 
     FilmCoating coating_;
     MicrofacetDistribution dist_;
+    mutable float cacheCos_ = std::numeric_limits<float>::quiet_NaN();
+    mutable bool cacheInside_ = false;
+    mutable SampledSpectrum cacheR_, cacheT_;
 };
 
 class ThinFilmMaterial final : public Material {
