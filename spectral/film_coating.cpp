@@ -41,7 +41,9 @@ IorSpec IorSpec::fromIOR(const IOR& ior) {
 float IorSpec::at(float lambda) const {
     if (ior_) return ior_->eval(lambda);
     if (spectrum_) return spectrum_->eval(lambda);
-    if (!perChannel_) return values_[0];
+    // A constant (or a triple of equal values): exactly that value, not a lerp of it (whose
+    // rounding made e.g. substrate_eta = 1.4 look dispersive to the transmission check).
+    if (!perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2])) return values_[0];
     std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
                                                {lambdas_[2], values_[2]}}};
     std::sort(pts.begin(), pts.end());

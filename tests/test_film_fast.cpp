@@ -194,5 +194,71 @@ TEST(FilmFastPath, FilmCoatingUsesHoistedConstantsExactly) {
     }
 }
 
+
+/// The per-BSDF reuse of stack results (iridescent_diffuse: the stack at cosθo; thinfilm rough
+/// transmission: the last (side, cosθ)) must not change any value: an interleaved sequence of
+/// eval / pdf / sample calls on one BSDF equals the same calls each made on a fresh BSDF.
+TEST(FilmFastPath, StackReuseInBSDFsChangesNothing) {
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, 16);
+    auto tProps = test::makeProps("thinfilm", {{"substrate", std::string("dielectric")}, {"film_ior", 1.33f},
+                                               {"alpha", 0.2f}, {"thickness", 380.0f}, {"substrate_eta", 1.4f}});
+    tProps->set("transmission", true, {});
+    std::vector<std::shared_ptr<Properties>> configs = {
+        test::makeProps("iridescent_diffuse", {{"film_ior", 1.9f}, {"thickness", 250.0f}, {"reflectance", 0.6f}}),
+        test::makeProps("iridescent_diffuse", {{"film_ior", 1.6f}, {"thickness", 800.0f}, {"alpha", 0.2f}}),
+        tProps};
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0, 1);
+    auto randomDir = [&](bool upper) {
+        const float z = upper ? 0.02f + 0.98f * u(rng) : 2 * u(rng) - 1, phi = 6.2831853f * u(rng);
+        const float r = std::sqrt(std::max(0.0f, 1 - z * z));
+        return vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    for (const auto& props : configs) {
+        const test::BSDFInstance reused = test::makeBSDF(*props, wl);
+        const bool twoSided = props->type() == "thinfilm";
+        for (int i = 0; i < 300; ++i) {
+            const vec3 wo = randomDir(!twoSided), wi = randomDir(!twoSided);
+            const float uc = u(rng);
+            const vec2 us(u(rng), u(rng));
+            for (int call = 0; call < 3; ++call) {  // the path tracer's order: eval, pdf, sample
+                Arena arena;
+                SampledWavelengths wlFresh = wl;
+                struct {
+                    const BSDF* bsdf;
+                } fresh{reused.material->getBSDF(ShadingPoint{}, wlFresh, arena)};
+                if (call == 0) {
+                    const SampledSpectrum a = reused.bsdf->eval(wo, wi, TransportMode::Radiance);
+                    const SampledSpectrum b = fresh.bsdf->eval(wo, wi, TransportMode::Radiance);
+                    for (int k = 0; k < wl.size(); ++k) ASSERT_EQ(a[k], b[k]);
+                } else if (call == 1) {
+                    ASSERT_EQ(reused.bsdf->pdf(wo, wi, TransportMode::Radiance),
+                              fresh.bsdf->pdf(wo, wi, TransportMode::Radiance));
+                } else {
+                    const auto a = reused.bsdf->sample(wo, uc, us, TransportMode::Radiance);
+                    const auto b = fresh.bsdf->sample(wo, uc, us, TransportMode::Radiance);
+                    ASSERT_EQ(bool(a), bool(b));
+                    if (!a) continue;
+                    ASSERT_EQ(a->pdf, b->pdf);
+                    ASSERT_EQ(a->wi, b->wi);
+                    for (int k = 0; k < wl.size(); ++k) ASSERT_EQ(a->f[k], b->f[k]);
+                }
+            }
+        }
+    }
+}
+
+
+TEST(FilmFastPath, ConstantIndexIsExactAtEveryWavelength) {
+    // A float index is a triple of equal values; it must come back unchanged at every λ (a lerp of
+    // it rounded, which made substrate_eta = 1.4 fail the non-dispersive check of transmission).
+    auto p = test::makeProps("thinfilm", {{"substrate_eta", 1.4f}, {"film_ior", 1.33f}});
+    const IorSpec eta = IorSpec::fromProperties(*p, "substrate_eta", 1.5f);
+    for (float l = 360.0f; l <= 830.0f; l += 0.37f) ASSERT_EQ(eta.at(l), 1.4f) << l;
+    p->set("substrate", std::string("dielectric"), {});
+    p->set("transmission", true, {});
+    EXPECT_NO_THROW(test::makeBSDF(*p, SampledWavelengths::sampleVisible(0.5f, 8)));
+}
+
 }  // namespace
 }  // namespace iris
