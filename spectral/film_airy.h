@@ -64,13 +64,24 @@ inline void sinCos(double x, double& sinX, double& cosX) {
 
 }  // namespace airy_detail
 
-inline bool airySingleFilmFastInline(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
-                        const SquaredIndex& substrate, FilmStackResult& out) {
-    using namespace airy_detail;
+/// The angle-dependent quantities of the incident medium, shared by all wavelengths of one
+/// evaluation: s² = (n0 sinθ0)², and the incident admittances y0 = n0 cosθ0 (s), n0 cosθ0/n0² (p).
+struct AiryAngle {
+    double s2 = 0, y0s = 0, y0p = 0;
+};
+inline AiryAngle airyAngle(double cosThetaIncident, double incidentIor) {
     const double c = std::clamp(cosThetaIncident, 0.0, 1.0);
     const double s = incidentIor * std::sqrt(std::max(0.0, 1.0 - c * c));
-    const double s2 = s * s;
     const double q0 = incidentIor * c;
+    return {s * s, q0, q0 / (incidentIor * incidentIor)};
+}
+
+/// airySingleFilmFast with the angle terms precomputed (FilmCoating: once per evaluation for all
+/// wavelengths).
+inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
+                                 FilmStackResult& out) {
+    using namespace airy_detail;
+    const double s2 = angle.s2;
     // Normal wave numbers q_j = sqrt(ñ_j² − s²), Im q_j ≥ 0 (Born & Wolf §1.5, ch. 14).
     const complexd q1 = waveFromRadicand(film.n1sq - s2);
     const complexd q2 = waveFromRadicand(substrate.sq - s2);
@@ -88,7 +99,7 @@ inline bool airySingleFilmFastInline(double cosThetaIncident, double incidentIor
     const complexd P(oneMinusAbsE + 2.0 * absE * ch * ch, sc);
     const complexd M(oneMinusAbsE + 2.0 * absE * sh * sh, -sc);
     // Tilted admittances (Macleod ch. 2): y_s = q, y_p = q/ñ².
-    const double y0[2] = {q0, q0 / (incidentIor * incidentIor)};
+    const double y0[2] = {angle.y0s, angle.y0p};
     const complexd y1[2] = {q1, cmul(q1, film.invN1sq)};
     const complexd y2[2] = {q2, cmul(q2, substrate.inv)};
     double R[2], T[2];
@@ -116,6 +127,11 @@ inline bool airySingleFilmFastInline(double cosThetaIncident, double incidentIor
     out.Ts = std::clamp(T[0], 0.0, 1.0);
     out.Tp = std::clamp(T[1], 0.0, 1.0);
     return true;
+}
+
+inline bool airySingleFilmFastInline(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
+                                     const SquaredIndex& substrate, FilmStackResult& out) {
+    return airySingleFilmFastAt(airyAngle(cosThetaIncident, incidentIor), film, substrate, out);
 }
 
 }  // namespace iris

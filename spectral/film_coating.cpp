@@ -166,6 +166,7 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
 // ---- FilmCoating ----
 
 namespace {
+constexpr double kTwoPiD = 6.283185307179586476925286766559;  // as in film_stack.cpp (k0 = 2π/λ)
 /// Textured thickness: negative, NaN or infinite values (e.g. from a bitmap) become 0 nm.
 double sanitizeThickness(float t) { return std::isfinite(t) ? std::max(0.0f, t) : 0.0; }
 }  // namespace
@@ -236,8 +237,14 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, L
     }
     if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
         auto* airy = static_cast<AiryEntry*>(arena.allocate(sizeof(AiryEntry) * n_, alignof(AiryEntry)));
-        for (int k = 0; k < n_; ++k)
-            new (airy + k) AiryEntry{airyFilmConstants(lambda_[k], layers_[k]), squaredIndex(substrate_[k])};
+        for (int k = 0; k < n_; ++k) {
+            // Constant indices repeat over k: reuse the previous entry's squares (same values).
+            const bool sameFilm = k > 0 && film_[k] == film_[k - 1], sameSub = k > 0 && substrate_[k] == substrate_[k - 1];
+            const SquaredIndex n1 = sameFilm ? SquaredIndex{airy[k - 1].film.n1sq, airy[k - 1].film.invN1sq}
+                                             : squaredIndex(film_[k]);
+            new (airy + k) AiryEntry{AiryFilmConstants{n1.sq, n1.inv, kTwoPiD / lambda_[k] * thickness_},
+                                     sameSub ? airy[k - 1].substrate : squaredIndex(substrate_[k])};
+        }
         airy_ = airy;
         extSq_ = squaredIndex(complexd(extIor_, 0.0));
     }
@@ -279,13 +286,13 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
 }
 
-/// Exact single film at entry k from the hoisted constants (airy_ set): the inlined fast kernel with
-/// the same clamps as stackRT, the general per-entry path when the kernel declines.
-inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below) const {
+/// Exact single film at entry k from the hoisted constants (airy_ set) and the angle terms of the
+/// incident medium: the fast kernel with the same clamps as stackRT, the general per-entry path
+/// when the kernel declines.
+inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     FilmStackResult r;
-    const bool ok = below ? airySingleFilmFastInline(cosTheta, substrate_[k].real(), airy_[k].film, extSq_, r)
-                          : airySingleFilmFastInline(cosTheta, extIor_, airy_[k].film, airy_[k].substrate, r);
-    if (!ok) return below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta);
+    if (!airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r))
+        return below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta);
     // clampEnergy: Rs, Rp ∈ [0, 1] and Ts, Tp ≥ 0 hold already; T ≤ 1 − R.
     r.Ts = std::min(r.Ts, 1.0 - r.Rs);
     r.Tp = std::min(r.Tp, 1.0 - r.Rp);
@@ -295,7 +302,8 @@ inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below) 
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
     if (airy_ && !belcourBarla_) {
-        for (int k = 0; k < n_; ++k) R[k] = float(exactAt(k, cosTheta, false).R());
+        const AiryAngle angle = airyAngle(cosTheta, extIor_);
+        for (int k = 0; k < n_; ++k) R[k] = float(exactAt(k, cosTheta, false, angle).R());
         return R;
     }
     for (int k = 0; k < n_; ++k) {
@@ -311,8 +319,9 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
     if (airy_ && !belcourBarla_) {
+        const AiryAngle angle = airyAngle(cosTheta, extIor_);
         for (int k = 0; k < n_; ++k) {
-            const FilmStackResult r = exactAt(k, cosTheta, false);
+            const FilmStackResult r = exactAt(k, cosTheta, false, angle);
             R[k] = float(r.R());
             T[k] = float(r.T());
         }
@@ -333,8 +342,14 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
 void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
+    AiryAngle angle;
+    double angleIor = -1;  // the incident medium is the substrate: angle terms per distinct index
     for (int k = 0; k < n_; ++k) {
-        const FilmStackResult r = airy_ ? exactAt(k, cosTheta, true) : stackRTFromBelow(k, cosTheta);
+        if (airy_ && substrate_[k].real() != angleIor) {
+            angleIor = substrate_[k].real();
+            angle = airyAngle(cosTheta, angleIor);
+        }
+        const FilmStackResult r = airy_ ? exactAt(k, cosTheta, true, angle) : stackRTFromBelow(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
     }

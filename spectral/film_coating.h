@@ -46,6 +46,8 @@ private:
     std::shared_ptr<const IOR> ior_;
 };
 
+struct AiryAngle;  // spectral/film_airy.h
+
 enum class FilmSubstrate { Conductor, Dielectric };
 enum class FilmRGBMode { Point, BelcourBarla };
 
@@ -128,7 +130,7 @@ public:
     complexd substrateIor(int k) const { return substrate_[k]; }
 
 private:
-    FilmStackResult exactAt(int k, double cosTheta, bool below) const;
+    FilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
     template <typename IorAt, typename LambdaAt>
     void init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda);
 
