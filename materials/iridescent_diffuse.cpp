@@ -30,9 +30,9 @@ namespace {
 
 class IridescentDiffuseBSDF final : public BSDF {
 public:
-    IridescentDiffuseBSDF(const FilmCoating& coating, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
+    IridescentDiffuseBSDF(const FilmCoatingArgs& c, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
                           bool smooth)
-        : coating_(coating), dist_(dist), smooth_(smooth) {
+        : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist), smooth_(smooth) {
         const int n = coating_.size();
         // Diffuse base factor ρ / (π η² (1 − ρ r_int)) per wavelength.
         base_ = SampledSpectrum(n);
@@ -166,7 +166,7 @@ public:
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const SampledSpectrum rho = map(rho_->eval(sp.tex, wl), [](float x) { return std::clamp(x, 0.0f, 1.0f); });
-        return arena.make<IridescentDiffuseBSDF>(FilmCoating(spec_, sp.tex, wl, arena), rho, dist_, smooth_);
+        return arena.make<IridescentDiffuseBSDF>(FilmCoatingArgs{spec_, sp.tex, wl, arena}, rho, dist_, smooth_);
     }
 
 private:

@@ -91,6 +91,15 @@ struct FilmCoatingSpec {
                                           const char* kName = "substrate_k");
 };
 
+/// The arguments of FilmCoating's per-path constructor, so that a BSDF can build its coating member
+/// in place (FilmCoating is over 1 KB: a temporary plus a copy per shading point is avoidable).
+struct FilmCoatingArgs {
+    const FilmCoatingSpec& spec;
+    const TextureQuery& tex;
+    const SampledWavelengths& wl;
+    Arena& arena;
+};
+
 /// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
 class FilmCoating {
 public:
