@@ -76,6 +76,7 @@ float IOR::eval(float lambda) const {
 }
 
 SampledSpectrum IOR::sample(const SampledWavelengths& wl) const {
+    if (kind_ == Kind::Constant) return SampledSpectrum(wl.size(), c_);  // = eval at every λ, without the switch
     SampledSpectrum s(wl.size());
     if (wl.isRGB() && kind_ == Kind::PerChannel) {
         for (int i = 0; i < 3; ++i) s[i] = a_[i];

@@ -23,14 +23,16 @@
 #include "materials/microfacet.h"
 #include "spectral/film_coating.h"
 
+#include <limits>
+
 namespace iris {
 namespace {
 
 class IridescentDiffuseBSDF final : public BSDF {
 public:
-    IridescentDiffuseBSDF(const FilmCoating& coating, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
+    IridescentDiffuseBSDF(const FilmCoatingArgs& c, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
                           bool smooth)
-        : coating_(coating), dist_(dist), smooth_(smooth) {
+        : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist), smooth_(smooth) {
         const int n = coating_.size();
         // Diffuse base factor ρ / (π η² (1 − ρ r_int)) per wavelength.
         base_ = SampledSpectrum(n);
@@ -59,7 +61,9 @@ public:
             if (smooth_) {
                 s.wi = reflectLocal(wo);
                 s.pdf = ps;
-                s.f = coating_.reflectance(wo.z) / wo.z;
+                // R(wo.z) of the cached pair equals coating_.reflectance(wo.z): the binder (the
+                // stack's substrate) is real here, so no Belcour–Barla T override applies.
+                s.f = woTerms(wo.z).R / wo.z;
                 s.flags = kBSDFReflection | kBSDFSpecular;
                 return s;
             }
@@ -97,10 +101,24 @@ public:
 
 private:
     SampledSpectrum diffuse(const vec3& wo, const vec3& wi) const {
-        SampledSpectrum Ri, Ti, Ro, To;
+        SampledSpectrum Ri, Ti;
         coating_.reflectanceTransmittance(wi.z, Ri, Ti);
-        coating_.reflectanceTransmittance(wo.z, Ro, To);
-        return base_ * Ti * To;
+        return base_ * Ti * woTerms(wo.z).T;
+    }
+
+    /// The stack's R and T at cosθo. A path tracer asks for them several times per vertex with the
+    /// same wo (eval and pdf of light sampling, then sample, which evaluates again): they are
+    /// computed once per distinct wo.z and reused (identical values; the BSDF belongs to one path,
+    /// hence to one thread).
+    struct StackRT {
+        SampledSpectrum R, T;
+    };
+    const StackRT& woTerms(float cosThetaO) const {
+        if (!(cosThetaO == woZ_)) {  // also recomputes for NaN
+            coating_.reflectanceTransmittance(cosThetaO, wo_.R, wo_.T);
+            woZ_ = cosThetaO;
+        }
+        return wo_;
     }
 
     SampledSpectrum specular(const vec3& wo, const vec3& wi) const {
@@ -114,9 +132,8 @@ private:
     }
 
     float specularProbability(const vec3& wo) const {
-        SampledSpectrum R, T;
-        coating_.reflectanceTransmittance(wo.z, R, T);
-        const float r = R.average(), t = T.average() * rhoAvg_;
+        const StackRT& rt = woTerms(wo.z);
+        const float r = rt.R.average(), t = rt.T.average() * rhoAvg_;
         if (r + t <= 0) return 0.5f;
         if (t == 0) return 1.0f;
         if (r == 0) return 0.0f;
@@ -136,6 +153,8 @@ private:
     FilmCoating coating_;
     SampledSpectrum base_;
     float rhoAvg_ = 0;
+    mutable float woZ_ = std::numeric_limits<float>::quiet_NaN();
+    mutable StackRT wo_;
     MicrofacetDistribution dist_;
     bool smooth_;
 };
@@ -147,7 +166,7 @@ public:
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const SampledSpectrum rho = map(rho_->eval(sp.tex, wl), [](float x) { return std::clamp(x, 0.0f, 1.0f); });
-        return arena.make<IridescentDiffuseBSDF>(FilmCoating(spec_, sp.tex, wl, arena), rho, dist_, smooth_);
+        return arena.make<IridescentDiffuseBSDF>(FilmCoatingArgs{spec_, sp.tex, wl, arena}, rho, dist_, smooth_);
     }
 
 private:

@@ -19,13 +19,15 @@
 #include "materials/microfacet.h"
 #include "spectral/film_coating.h"
 
+#include <limits>
+
 namespace iris {
 namespace {
 
 class ThinFilmBSDF final : public BSDF {
 public:
-    ThinFilmBSDF(const FilmCoating& coating, const MicrofacetDistribution& dist, bool smooth)
-        : coating_(coating), dist_(dist), smooth_(smooth) {}
+    ThinFilmBSDF(const FilmCoatingArgs& c, const MicrofacetDistribution& dist, bool smooth)
+        : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist), smooth_(smooth) {}
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
         const int n = coating_.size();
@@ -83,7 +85,7 @@ private:
 /// Smooth film on a dielectric with both reflection and transmission (see the file comment).
 class ThinFilmTransmissionBSDF final : public BSDF {
 public:
-    explicit ThinFilmTransmissionBSDF(const FilmCoating& coating) : coating_(coating) {}
+    explicit ThinFilmTransmissionBSDF(const FilmCoatingArgs& c) : coating_(c.spec, c.tex, c.wl, c.arena) {}
 
     SampledSpectrum eval(const vec3&, const vec3&, TransportMode) const override {
         return SampledSpectrum(coating_.size());
@@ -135,8 +137,8 @@ private:
 /// the media (the stack is then lit from the substrate side).
 class ThinFilmRoughTransmissionBSDF final : public BSDF {
 public:
-    ThinFilmRoughTransmissionBSDF(const FilmCoating& coating, const MicrofacetDistribution& dist)
-        : coating_(coating), dist_(dist) {}
+    ThinFilmRoughTransmissionBSDF(const FilmCoatingArgs& c, const MicrofacetDistribution& dist)
+        : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist) {}
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFGlossy; }
 
@@ -241,9 +243,18 @@ private:
         if (!reflect && denom == 0) return false;
         return glm::dot(wo, h) > 0;
     }
+    /// The stack at the microfacet angle from wo's side. sample() needs it three times at the same
+    /// angle (lobe choice, pdf, f) and light sampling twice (eval, pdf): the last result is kept and
+    /// reused for the same (side, cosθ) — identical values; the BSDF belongs to one path/thread.
     void stackAt(bool inside, float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
-        if (inside) coating_.fromBelowRT(cosTheta, R, T);
-        else coating_.reflectanceTransmittance(cosTheta, R, T);
+        if (!(cosTheta == cacheCos_ && inside == cacheInside_)) {
+            if (inside) coating_.fromBelowRT(cosTheta, cacheR_, cacheT_);
+            else coating_.reflectanceTransmittance(cosTheta, cacheR_, cacheT_);
+            cacheCos_ = cosTheta;
+            cacheInside_ = inside;
+        }
+        R = cacheR_;
+        T = cacheT_;
     }
     float reflectProbability(bool inside, float cosTheta) const {
         SampledSpectrum R, T;
@@ -254,6 +265,9 @@ private:
 
     FilmCoating coating_;
     MicrofacetDistribution dist_;
+    mutable float cacheCos_ = std::numeric_limits<float>::quiet_NaN();
+    mutable bool cacheInside_ = false;
+    mutable SampledSpectrum cacheR_, cacheT_;
 };
 
 class ThinFilmMaterial final : public Material {
@@ -262,9 +276,11 @@ public:
         : spec_(std::move(spec)), dist_(dist), smooth_(smooth), transmission_(transmission) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
-        if (transmission_ && smooth_) return arena.make<ThinFilmTransmissionBSDF>(FilmCoating(spec_, sp.tex, wl, arena));
-        if (transmission_) return arena.make<ThinFilmRoughTransmissionBSDF>(FilmCoating(spec_, sp.tex, wl, arena), dist_);
-        return arena.make<ThinFilmBSDF>(FilmCoating(spec_, sp.tex, wl, arena), dist_, smooth_);
+        // The coating is built in place inside the BSDF (no copy of its per-wavelength arrays).
+        const FilmCoatingArgs c{spec_, sp.tex, wl, arena};
+        if (transmission_ && smooth_) return arena.make<ThinFilmTransmissionBSDF>(c);
+        if (transmission_) return arena.make<ThinFilmRoughTransmissionBSDF>(c, dist_);
+        return arena.make<ThinFilmBSDF>(c, dist_, smooth_);
     }
 
 private:

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "materials/belcour_barla.h"
 #include "materials/conductor_presets.h"
+#include "spectral/film_airy.h"
 
 namespace iris {
 
@@ -40,7 +41,9 @@ IorSpec IorSpec::fromIOR(const IOR& ior) {
 float IorSpec::at(float lambda) const {
     if (ior_) return ior_->eval(lambda);
     if (spectrum_) return spectrum_->eval(lambda);
-    if (!perChannel_) return values_[0];
+    // A constant (or a triple of equal values): exactly that value, not a lerp of it (whose
+    // rounding made e.g. substrate_eta = 1.4 look dispersive to the transmission check).
+    if (!perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2])) return values_[0];
     std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
                                                {lambdas_[2], values_[2]}}};
     std::sort(pts.begin(), pts.end());
@@ -163,6 +166,7 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
 // ---- FilmCoating ----
 
 namespace {
+constexpr double kTwoPiD = 6.283185307179586476925286766559;  // as in film_stack.cpp (k0 = 2π/λ)
 /// Textured thickness: negative, NaN or infinite values (e.g. from a bitmap) become 0 nm.
 double sanitizeThickness(float t) { return std::isfinite(t) ? std::max(0.0f, t) : 0.0; }
 }  // namespace
@@ -231,6 +235,19 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, L
             new (row + 1 + j) Layer{complexd(ior(e.ior, k), ior(e.k, k)), e.thicknessNm};
         }
     }
+    if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
+        auto* airy = static_cast<AiryEntry*>(arena.allocate(sizeof(AiryEntry) * n_, alignof(AiryEntry)));
+        for (int k = 0; k < n_; ++k) {
+            // Constant indices repeat over k: reuse the previous entry's squares (same values).
+            const bool sameFilm = k > 0 && film_[k] == film_[k - 1], sameSub = k > 0 && substrate_[k] == substrate_[k - 1];
+            const SquaredIndex n1 = sameFilm ? SquaredIndex{airy[k - 1].film.n1sq, airy[k - 1].film.invN1sq}
+                                             : squaredIndex(film_[k]);
+            new (airy + k) AiryEntry{AiryFilmConstants{n1.sq, n1.inv, kTwoPiD / lambda_[k] * thickness_},
+                                     sameSub ? airy[k - 1].substrate : squaredIndex(substrate_[k])};
+        }
+        airy_ = airy;
+        extSq_ = squaredIndex(complexd(extIor_, 0.0));
+    }
 }
 
 namespace {
@@ -245,6 +262,10 @@ FilmStackResult clampEnergy(FilmStackResult r) {
 }  // namespace
 
 FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
+    if (airy_) {  // exact single film: hoisted constants, fast path (falls back below on degenerate cases)
+        FilmStackResult r;
+        if (airySingleFilmFast(cosTheta, extIor_, airy_[k].film, airy_[k].substrate, r)) return clampEnergy(r);
+    }
     const int stride = 1 + nExtra_;
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
@@ -254,6 +275,10 @@ FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
 FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     const int stride = 1 + nExtra_;
     const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
+    if (airy_) {
+        FilmStackResult r;
+        if (airySingleFilmFast(cosTheta, inc, airy_[k].film, extSq_, r)) return clampEnergy(r);
+    }
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
     Layer rev[9];
@@ -261,8 +286,26 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
 }
 
+/// Exact single film at entry k from the hoisted constants (airy_ set) and the angle terms of the
+/// incident medium: the fast kernel with the same clamps as stackRT, the general per-entry path
+/// when the kernel declines.
+inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
+    FilmStackResult r;
+    if (!airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r))
+        return below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta);
+    // clampEnergy: Rs, Rp ∈ [0, 1] and Ts, Tp ≥ 0 hold already; T ≤ 1 − R.
+    r.Ts = std::min(r.Ts, 1.0 - r.Rs);
+    r.Tp = std::min(r.Tp, 1.0 - r.Rp);
+    return r;
+}
+
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
+    if (airy_ && !belcourBarla_) {
+        const AiryAngle angle = airyAngle(cosTheta, extIor_);
+        for (int k = 0; k < n_; ++k) R[k] = float(exactAt(k, cosTheta, false, angle).R());
+        return R;
+    }
     for (int k = 0; k < n_; ++k) {
         if (belcourBarla_)
             R[k] = float(belcourBarlaReflectance(k, cosTheta, extIor_, film_[k].real(), thickness_, substrate_[k]));
@@ -275,6 +318,15 @@ SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
 void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
+    if (airy_ && !belcourBarla_) {
+        const AiryAngle angle = airyAngle(cosTheta, extIor_);
+        for (int k = 0; k < n_; ++k) {
+            const FilmStackResult r = exactAt(k, cosTheta, false, angle);
+            R[k] = float(r.R());
+            T[k] = float(r.T());
+        }
+        return;
+    }
     for (int k = 0; k < n_; ++k) {
         const FilmStackResult r = stackRT(k, cosTheta);
         R[k] = float(r.R());
@@ -290,8 +342,14 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
 void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
+    AiryAngle angle;
+    double angleIor = -1;  // the incident medium is the substrate: angle terms per distinct index
     for (int k = 0; k < n_; ++k) {
-        const FilmStackResult r = stackRTFromBelow(k, cosTheta);
+        if (airy_ && substrate_[k].real() != angleIor) {
+            angleIor = substrate_[k].real();
+            angle = airyAngle(cosTheta, angleIor);
+        }
+        const FilmStackResult r = airy_ ? exactAt(k, cosTheta, true, angle) : stackRTFromBelow(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
     }

@@ -46,6 +46,8 @@ private:
     std::shared_ptr<const IOR> ior_;
 };
 
+struct AiryAngle;  // spectral/film_airy.h
+
 enum class FilmSubstrate { Conductor, Dielectric };
 enum class FilmRGBMode { Point, BelcourBarla };
 
@@ -89,6 +91,15 @@ struct FilmCoatingSpec {
                                           const char* kName = "substrate_k");
 };
 
+/// The arguments of FilmCoating's per-path constructor, so that a BSDF can build its coating member
+/// in place (FilmCoating is over 1 KB: a temporary plus a copy per shading point is avoidable).
+struct FilmCoatingArgs {
+    const FilmCoatingSpec& spec;
+    const TextureQuery& tex;
+    const SampledWavelengths& wl;
+    Arena& arena;
+};
+
 /// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
 class FilmCoating {
 public:
@@ -128,6 +139,7 @@ public:
     complexd substrateIor(int k) const { return substrate_[k]; }
 
 private:
+    FilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
     template <typename IorAt, typename LambdaAt>
     void init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda);
 
@@ -139,6 +151,14 @@ private:
     complexd film_[kMaxWavelengths];
     complexd substrate_[kMaxWavelengths];
     Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
+    /// Exact mode with a single film: the angle-independent Airy constants per entry (arena),
+    /// hoisted out of every evaluation (film_stack.h airySingleFilmFast); nullptr otherwise.
+    struct AiryEntry {
+        AiryFilmConstants film;
+        SquaredIndex substrate;
+    };
+    const AiryEntry* airy_ = nullptr;
+    SquaredIndex extSq_;  // the exterior as the "substrate" of the reversed stack (fromBelow)
     const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;
 };

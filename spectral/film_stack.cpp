@@ -2,6 +2,8 @@
 // Derivations and the numerics choices for ill-conditioned cases are in docs/thin_film.md.
 #include "spectral/film_stack.h"
 
+#include "spectral/film_airy.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -40,8 +42,12 @@ struct AmpRT {
     double T;
 };
 
-AmpRT transferMatrix(Pol pol, double lambdaNm, double y0, double s, std::span<const Layer> layers,
-                     complexd substrateIor) {
+/// Both polarisations of the transfer-matrix method in one pass over the layers: q, E = e^{2iδ}
+/// and g = (E − 1)/(2q) of each layer (the csqrt, cexp and expm1 work) are computed once and used
+/// by s and p; each polarisation keeps its own (B, C) and scale, with the same operations as a
+/// separate pass. y0[0], y0[1]: incident admittances for s and p. Returns {s, p}.
+void transferMatrix(double lambdaNm, const double y0[2], double s, std::span<const Layer> layers, complexd substrateIor,
+                    AmpRT out[2]) {
     // Characteristic matrix of layer j for the e^{−iωt} convention (Born & Wolf §1.6.2; Macleod's
     // ch. 2 form is the same with i → −i for his e^{+iωt}, ñ = n − ik), multiplied by e^{iδ}:
     //   e^{iδ} [[cos δ, −i sin δ / y], [−i y sin δ, cos δ]]
@@ -51,9 +57,9 @@ AmpRT transferMatrix(Pol pol, double lambdaNm, double y0, double s, std::span<co
     // ch. 2), times |Π e^{iδ_j}|² for the scaling, which is tracked as a logarithm.
     const double k0 = kTwoPi / lambdaNm;
     const complexd qSub = normalWaveNumber(substrateIor, s);
-    const complexd ySub = admittance(pol, qSub, substrateIor);
-    complexd B = 1.0, C = ySub;
-    double logScale = 0.0;  // (B, C)_true = (B, C) · e^{logScale}
+    const complexd ySub[2] = {admittance(Pol::S, qSub, substrateIor), admittance(Pol::P, qSub, substrateIor)};
+    complexd B[2] = {1.0, 1.0}, C[2] = {ySub[0], ySub[1]};
+    double logScale[2] = {0.0, 0.0};  // (B, C)_true = (B, C) · e^{logScale}
     for (auto it = layers.rbegin(); it != layers.rend(); ++it) {
         const complexd n = it->ior;
         const complexd q = normalWaveNumber(n, s);
@@ -63,30 +69,38 @@ AmpRT transferMatrix(Pol pol, double lambdaNm, double y0, double s, std::span<co
         const complexd g = halfExpm1OverQ(q, k0d);
         const complexd n2 = n * n;
         const complexd m00 = 0.5 * (1.0 + E);
-        const complexd m01 = pol == Pol::S ? -g : -(n2 * g);
-        const complexd m10 = pol == Pol::S ? -(q * q * g) : -(q * q * g / n2);
-        const complexd nb = m00 * B + m01 * C;
-        const complexd nc = m10 * B + m00 * C;
-        B = nb;
-        C = nc;
-        logScale += delta.imag();  // true matrix = e^{−iδ}·scaled one, |e^{−iδ}| = e^{Im δ}
-        // Renormalise to keep (B, C) of order one.
-        const double m = std::max(std::abs(B), std::abs(C));
-        if (m > 0 && std::isfinite(m)) {
-            B /= m;
-            C /= m;
-            logScale += std::log(m);
+        const complexd qqg = q * q * g;
+        const complexd m01[2] = {-g, -(n2 * g)};
+        const complexd m10[2] = {-qqg, -(qqg / n2)};
+        for (int k = 0; k < 2; ++k) {
+            const complexd nb = m00 * B[k] + m01[k] * C[k];
+            const complexd nc = m10[k] * B[k] + m00 * C[k];
+            B[k] = nb;
+            C[k] = nc;
+            logScale[k] += delta.imag();  // true matrix = e^{−iδ}·scaled one, |e^{−iδ}| = e^{Im δ}
+            // Renormalise to keep (B, C) of order one.
+            const double m = std::max(std::abs(B[k]), std::abs(C[k]));
+            if (m > 0 && std::isfinite(m)) {
+                B[k] /= m;
+                C[k] /= m;
+                logScale[k] += std::log(m);
+            }
         }
     }
-    // (B, C)_true = (B, C) · e^{logScale}: T = 4 y0 Re(y_sub) / (|den|² e^{2 logScale}), evaluated in
-    // logarithms so that thick absorbing stacks underflow gracefully to T = 0.
-    const complexd den = y0 * B + C;
-    const double aden = std::abs(den);
-    if (!(aden > 0) || !std::isfinite(aden)) return {complexd(-1.0, 0.0), 0.0};
-    const complexd r = (y0 * B - C) / den;
-    const double num = 4.0 * y0 * ySub.real();
-    const double T = num > 0 ? std::exp(std::log(num) - 2.0 * std::log(aden) - 2.0 * logScale) : 0.0;
-    return {r, T};
+    for (int k = 0; k < 2; ++k) {
+        // (B, C)_true = (B, C) · e^{logScale}: T = 4 y0 Re(y_sub) / (|den|² e^{2 logScale}), evaluated
+        // in logarithms so that thick absorbing stacks underflow gracefully to T = 0.
+        const complexd den = y0[k] * B[k] + C[k];
+        const double aden = std::abs(den);
+        if (!(aden > 0) || !std::isfinite(aden)) {
+            out[k] = {complexd(-1.0, 0.0), 0.0};
+            continue;
+        }
+        const complexd r = (y0[k] * B[k] - C[k]) / den;
+        const double num = 4.0 * y0[k] * ySub[k].real();
+        const double T = num > 0 ? std::exp(std::log(num) - 2.0 * std::log(aden) - 2.0 * logScale[k]) : 0.0;
+        out[k] = {r, T};
+    }
 }
 
 }  // namespace
@@ -127,8 +141,10 @@ FilmStackResult filmStackRT(double lambdaNm, double cosThetaIncident, double inc
     const double s = incidentIor * std::sqrt(std::max(0.0, 1.0 - c * c));
     const double q0 = incidentIor * c;
     FilmStackResult res;
-    const AmpRT as = transferMatrix(Pol::S, lambdaNm, q0, s, layers, substrateIor);
-    const AmpRT ap = transferMatrix(Pol::P, lambdaNm, q0 / (incidentIor * incidentIor), s, layers, substrateIor);
+    const double y0[2] = {q0, q0 / (incidentIor * incidentIor)};
+    AmpRT amp[2];
+    transferMatrix(lambdaNm, y0, s, layers, substrateIor, amp);
+    const AmpRT &as = amp[0], &ap = amp[1];
     res.Rs = std::min(1.0, std::norm(as.r));
     res.Rp = std::min(1.0, std::norm(ap.r));
     res.Ts = std::clamp(as.T, 0.0, 1.0);
@@ -190,8 +206,33 @@ FilmStackResult combine(const AmpRT& s, const AmpRT& p, bool clampR) {
 
 }  // namespace
 
+SquaredIndex squaredIndex(complexd ior) {
+    const complexd sq = airy_detail::cmul(ior, ior);
+    const double nn = airy_detail::cnorm(sq);
+    return {sq, complexd(sq.real() / nn, -sq.imag() / nn)};  // 1/z = conj(z)/|z|²
+}
+AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film) {
+    const SquaredIndex n = squaredIndex(film.ior);
+    return {n.sq, n.inv, kTwoPi / lambdaNm * film.thicknessNm};
+}
+
+bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
+                        const SquaredIndex& substrate, FilmStackResult& out) {
+    return airySingleFilmFastInline(cosThetaIncident, incidentIor, film, substrate, out);
+}
+
 FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor) {
+    FilmStackResult r;
+    if (airySingleFilmFast(cosThetaIncident, incidentIor, airyFilmConstants(lambdaNm, film), squaredIndex(substrateIor), r))
+        return r;
+    // Degenerate for the closed form (q1 = 0 exactly): the transfer matrix, which is well
+    // conditioned there (halfExpm1OverQ), gives the same quantity.
+    return filmStackRT(lambdaNm, cosThetaIncident, incidentIor, std::span<const Layer>(&film, 1), substrateIor);
+}
+
+FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                        const Layer& film, complexd substrateIor) {
     AmpRT out[2];
     for (int k = 0; k < 2; ++k) {
         const FilmInterfaces f =

@@ -71,8 +71,43 @@ enum class FilmPhaseMode {
 /// Closed-form Airy summation for one film (Born & Wolf §1.6.4; Heavens,
 /// "Optical Properties of Thin Solid Films", ch. 4):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
 /// t = t01 t12 e^{iδ}/(1 + r01 r12 e^{2iδ}),  δ = 2π ñ1 d cosθ1 / λ.
+/// Evaluated by airySingleFilmFast (below), with airySingleFilmReference as its fallback.
 FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor);
+
+/// The original formulation of airySingleFilm (complex interface coefficients r01, r12 and
+/// std::complex division). Kept as the reference the fast path is tested against and as its
+/// fallback for degenerate denominators.
+FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                        const Layer& film, complexd substrateIor);
+
+/// Angle-independent part of the exact Airy sum at one wavelength, hoisted out of per-evaluation
+/// code (FilmCoating keeps one per path wavelength): film ñ1², 1/ñ1² and k0 d = 2π d/λ.
+struct AiryFilmConstants {
+    complexd n1sq, invN1sq;
+    double k0d = 0;
+};
+AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film);
+/// Squared index and its reciprocal (for the p admittance y_p = q/ñ²), in real arithmetic.
+struct SquaredIndex {
+    complexd sq, inv;
+};
+SquaredIndex squaredIndex(complexd ior);
+
+/// Fast exact Airy sum (docs/thin_film.md §8): s and p from one q1, q2 and one sin/cos pair;
+/// no complex division. With P = 1 + e^{2iδ}, M = 1 − e^{2iδ} (from the half angle, no cancellation)
+/// the Airy sum multiplied through by (y0 + y1)(y1 + y2) is
+///   r = [y1 (y0 − y2) P + (y0 y2 − y1²) M] / den,   den = y1 (y0 + y2) P + (y0 y2 + y1²) M,
+///   T = 16 y0 Re(y2) |y1|² |e^{2iδ}| / |den|²,
+/// so R and T need one real division each; e^{iδ} enters T only through |e^{iδ}|² = |e^{2iδ}|. This
+/// form stays accurate at the film's critical angle (y1 → 0 and M → 0 together), where the
+/// r01/r12 form (airySingleFilmReference) is 0/0. q1, q2 take a real square root when their
+/// radicand is real (lossless film or substrate: real below the critical angle, imaginary beyond).
+/// Returns false (out untouched) when den vanishes or underflows (q1 = 0 exactly) or a result is
+/// not finite; airySingleFilm then uses the transfer matrix. Tested against the transfer matrix
+/// and the reference in tests/test_film_fast.cpp.
+bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
+                        const SquaredIndex& substrate, FilmStackResult& out);
 
 /// Coherent sum truncated after K ≥ 0 round trips: reflection keeps the direct beam and K beams
 /// that made 1..K round trips (K = 1: two-beam interference), transmission the K beams with
