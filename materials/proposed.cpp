@@ -20,6 +20,9 @@
 //   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
+#include <optional>
+#include <vector>
+
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/thesis_channels.h"
@@ -33,8 +36,7 @@ enum class PhaseMode { Off, Total, PerReflection };
 class ProposedBSDF final : public BSDF {
 public:
     struct Params {
-        const RoughTransmittanceTables* tables;
-        const RoughTransmittanceTables::Line* lines;  // per channel: table stencil of (η_c, α)
+        RoughCoatChannels coatT;  // T(η_c, α, μ) per channel (collapsed lines or table stencils)
         MicrofacetDistribution dist;
         float alpha, etaI, d;
         Frame coat;        // frame of the top normal n0 (coat microfacet model)
@@ -42,13 +44,11 @@ public:
         bool tilted0, tilted1;
         PhaseMode phase;
         SampledSpectrum eta, etaT, lambda, ws, wd;
+        SampledSpectrum fdr;  // Rd = Fdr = 1 − Td(η_c, α) per channel (eq. 3.19)
     };
 
-    explicit ProposedBSDF(const Params& p) : p_(p), wdEff_(p.wd), fdr_(p.wd) {
-        for (int c = 0; c < p_.eta.size(); ++c) {
-            fdr_[c] = 1.0f - p_.tables->internalDiffuseTransmittance(p_.eta[c], p_.alpha);  // eq. 3.19
-            wdEff_[c] = roughCoatAlbedo(p_.wd[c], fdr_[c], false);                          // wd/(1 − Rd)
-        }
+    explicit ProposedBSDF(const Params& p) : p_(p), wdEff_(p.wd) {
+        for (int c = 0; c < p_.eta.size(); ++c) wdEff_[c] = roughCoatAlbedo(p_.wd[c], p_.fdr[c], false);  // wd/(1 − Rd)
     }
 
     vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
@@ -60,10 +60,13 @@ public:
         const vec3 woC = toCoat(wo), wiC = toCoat(wi);
         if (woC.z <= 0 || wiC.z <= 0) return f;
         const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC);
+        float tI[kMaxWavelengths], tO[kMaxWavelengths];  // T12, T21 per channel (eqs. 2.52–2.53)
+        p_.coatT.transmittance(wiC.z, n, tI);
+        p_.coatT.transmittance(woC.z, n, tO);
         for (int c = 0; c < n; ++c) {
             const float eta = p_.eta[c];
             const float s = roughCoatSpecular(g, woC, eta);
-            const float d = roughCoatDiffuse(*p_.tables, p_.lines[c], eta, wiC.z, woC.z);
+            const float d = roughCoatDiffuse(tI[c], tO[c], eta);
             const float fr = p_.ws[c] * s;     // eq. 3.15
             const float ft = wdEff_[c] * d;    // eq. 3.16
             if (p_.phase == PhaseMode::Off) {
@@ -79,7 +82,7 @@ public:
             if (p_.phase == PhaseMode::Total) {
                 f[c] = fr + ft + 2.0f * cos2phi * std::sqrt(fr * ft);  // eqs. 3.21–3.22
             } else {
-                const float rd = fdr_[c], r = std::sqrt(rd);
+                const float rd = p_.fdr[c], r = std::sqrt(rd);
                 const float a1sq = ft * (1.0f - rd);
                 const float den = std::max(1e-12f, 1.0f - 2.0f * r * cos2phi + rd);
                 f[c] = std::max(0.0f, fr + a1sq / den + 2.0f * std::sqrt(fr * a1sq) * (cos2phi - r) / den);
@@ -89,9 +92,11 @@ public:
     }
 
     float specularProbability(const vec3& woC) const {
-        float t = 0.0f;
+        float tO[kMaxWavelengths];
         const int n = p_.eta.size();
-        for (int c = 0; c < n; ++c) t += p_.tables->transmittance(p_.lines[c], woC.z);
+        p_.coatT.transmittance(woC.z, n, tO);
+        float t = 0.0f;
+        for (int c = 0; c < n; ++c) t += tO[c];
         return roughCoatSpecularProbability(p_.ws.average(), p_.wd.average(), t / float(n));
     }
 
@@ -129,7 +134,7 @@ public:
 
 private:
     Params p_;
-    SampledSpectrum wdEff_, fdr_;
+    SampledSpectrum wdEff_;
 };
 
 class ProposedMaterial final : public Material {
@@ -173,11 +178,20 @@ public:
             failAt(p.locationOf("phase_mode"), "proposed: phase_mode must be 'total' or 'per_reflection', got '", mode, "'");
         phase_ = !phase ? PhaseMode::Off : mode == "total" ? PhaseMode::Total : PhaseMode::PerReflection;
         tables_ = &roughPlasticTables(type_);
+        // Constant α (the thesis setting): collapse the tables along α once, and in RGB mode (fixed
+        // η per channel) fold the η stencil too: one μ-line and one Fdr per channel, shared by all
+        // shading points (RoughTablesAtAlpha; exact up to float rounding).
+        if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get())) {
+            atAlpha_.emplace(*tables_, std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax));
+            const int nMu = atAlpha_->nMu();
+            rgbLines_.assign(size_t(3) * nMu, 0.0f);
+            for (int k = 0; k < 3; ++k)
+                rgbFdr_[k] = 1.0f - atAlpha_->collapse(etaT_.channel(k) / etaI_, &rgbLines_[size_t(k) * nMu]);  // eq. 3.19
+        }
     }
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         ProposedBSDF::Params q;
-        q.tables = tables_;
         q.alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
         q.dist = MicrofacetDistribution(type_, q.alpha, q.alpha);
         q.etaI = etaI_;
@@ -192,10 +206,29 @@ public:
         q.lambda = channelLambdas(wl, lambdas_);
         q.ws = clampZero(ws_->eval(sp.tex, wl));
         q.wd = clampZero(wd_->eval(sp.tex, wl));
-        using Line = RoughTransmittanceTables::Line;
-        auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(wl.size()), alignof(Line)));
-        for (int c = 0; c < wl.size(); ++c) new (&lines[c]) Line(tables_->line(q.eta[c], q.alpha));
-        q.lines = lines;
+        const int n = wl.size();
+        q.fdr = SampledSpectrum(n);
+        q.coatT.tables = tables_;
+        if (atAlpha_) {
+            const int nMu = atAlpha_->nMu();
+            q.coatT.nMu = nMu;
+            if (wl.isRGB() && n == 3) {  // the per-material lines of the three fixed channel η
+                q.coatT.lines = rgbLines_.data();
+                for (int c = 0; c < n; ++c) q.fdr[c] = rgbFdr_[c];
+            } else {  // spectral: η(λ) varies per path; fold the η stencil once per shading point
+                auto* lines = static_cast<float*>(arena.allocate(sizeof(float) * size_t(n) * nMu, alignof(float)));
+                for (int c = 0; c < n; ++c) q.fdr[c] = 1.0f - atAlpha_->collapse(q.eta[c], lines + size_t(c) * nMu);
+                q.coatT.lines = lines;
+            }
+        } else {  // textured α: the (η, α) stencils of the full tables
+            using Line = RoughTransmittanceTables::Line;
+            auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(n), alignof(Line)));
+            for (int c = 0; c < n; ++c) {
+                new (&lines[c]) Line(tables_->line(q.eta[c], q.alpha));
+                q.fdr[c] = 1.0f - tables_->internalDiffuseTransmittance(q.eta[c], q.alpha);  // eq. 3.19
+            }
+            q.coatT.stencils = lines;
+        }
         return arena.make<ProposedBSDF>(q);
     }
 
@@ -210,6 +243,9 @@ private:
     SpectrumTexturePtr ws_, wd_;
     PhaseMode phase_;
     const RoughTransmittanceTables* tables_;
+    std::optional<RoughTablesAtAlpha> atAlpha_;  // constant α only
+    std::vector<float> rgbLines_;                // RGB mode: channel k's μ-line at k · nMu
+    float rgbFdr_[3] = {0, 0, 0};
 };
 
 std::shared_ptr<Material> createProposed(const Properties& p) { return std::make_shared<ProposedMaterial>(p); }

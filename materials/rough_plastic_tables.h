@@ -17,6 +17,7 @@
 // See docs/thesis_models.md for the resolution and the measured interpolation error.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +65,91 @@ public:
     static float alphaNode(int i, int n) { return kAlphaMax * sqr(float(i) / float(n - 1)); }
     static float muNode(int i, int n) { return float(i) / float(n - 1); }
 };
+
+/// Catmull-Rom stencil (thesis eqs. 2.45–2.50): up to four (index, weight) pairs at grid
+/// coordinate x ∈ [0, n−1]. Ghost nodes beyond the ends are linear extrapolations
+/// (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}), folded into the weights.
+struct RoughStencil {
+    int idx[4];
+    float w[4];
+    int count = 0;
+};
+inline void roughStencilAdd(RoughStencil& s, int i, float wt) {
+    for (int k = 0; k < s.count; ++k)
+        if (s.idx[k] == i) {
+            s.w[k] += wt;
+            return;
+        }
+    s.idx[s.count] = i;
+    s.w[s.count++] = wt;
+}
+
+inline RoughStencil roughCatmullRom(float x, int n) {
+    x = std::clamp(x, 0.0f, float(n - 1));
+    const int i = std::min(int(x), n - 2);
+    const float t = x - float(i), t2 = t * t, t3 = t2 * t;
+    const float wts[4] = {-0.5f * t + t2 - 0.5f * t3,          // eq. 2.46
+                          1.0f - 2.5f * t2 + 1.5f * t3,        // eq. 2.47
+                          0.5f * t + 2.0f * t2 - 1.5f * t3,    // eq. 2.48
+                          -0.5f * t2 + 0.5f * t3};             // eq. 2.49
+    RoughStencil s;
+    if (i >= 1 && i + 2 <= n - 1) {  // interior: four distinct nodes, no ghosts
+        for (int k = 0; k < 4; ++k) {
+            s.idx[k] = i - 1 + k;
+            s.w[k] = wts[k];
+        }
+        s.count = 4;
+        return s;
+    }
+    for (int k = 0; k < 4; ++k) {
+        const int j = i - 1 + k;
+        if (j < 0) {
+            roughStencilAdd(s, 0, 2.0f * wts[k]);
+            roughStencilAdd(s, 1, -wts[k]);
+        } else if (j > n - 1) {
+            roughStencilAdd(s, n - 1, 2.0f * wts[k]);
+            roughStencilAdd(s, n - 2, -wts[k]);
+        } else {
+            roughStencilAdd(s, j, wts[k]);
+        }
+    }
+    return s;
+}
+
+/// The tables at one fixed α, collapsed along α once. Eqs. 2.44 and 2.51 are linear in the table
+/// values, so Σ_η Σ_α w_η w_α V[η, α, ·] = Σ_η w_η (Σ_α w_α V[η, α, ·]): per η node this keeps
+/// one μ-line of T and one Td (exact up to float rounding). collapse() then folds the η stencil
+/// too, giving the single μ-line of T(η, α, ·) that a BSDF with fixed (η, α) reads with a
+/// 4-node Catmull-Rom in μ (instead of 16 lines × 4 nodes).
+class RoughTablesAtAlpha {
+public:
+    RoughTablesAtAlpha() = default;
+    RoughTablesAtAlpha(const RoughTransmittanceTables& t, float alpha);
+
+    float alpha() const { return alpha_; }
+    int nMu() const { return nMu_; }
+    /// Writes the μ-line of T(η, α, ·) (nMu() values at the μ nodes, unclamped) to `line` and
+    /// returns Td(η, α) (clamped to [0, 1] as internalDiffuseTransmittance). Deterministic: the
+    /// same (η, this α) always gives bit-identical values.
+    float collapse(float eta, float* line) const;
+
+private:
+    float alpha_ = 0.0f;
+    int nEta_ = 0, nMu_ = 0;
+    std::vector<float> ext_;      // Σ_α w_α T[η_i, α, μ_m], index i · nMu + m
+    std::vector<float> diffuse_;  // Σ_α w_α Td[η_i, α]
+};
+
+/// μ stencil of a direction with cosine cosTheta on lines of nMu nodes (clamped to [0, 1]).
+inline RoughStencil roughMuStencil(float cosTheta, int nMu) {
+    return roughCatmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(nMu - 1), nMu);
+}
+/// T on a collapsed μ-line (eq. 2.44 after the collapse), clamped to [0, 1] as transmittance().
+inline float roughLineTransmittance(const float* line, const RoughStencil& mu) {
+    float v = 0;
+    for (int k = 0; k < mu.count; ++k) v += mu.w[k] * line[mu.idx[k]];
+    return std::clamp(v, 0.0f, 1.0f);
+}
 
 /// Brute-force directional transmittance T(η, α, μ) (double-precision quadrature with `q` points
 /// per dimension and piece). η may be < 1 (light inside the denser medium; total internal

@@ -47,6 +47,30 @@ inline float roughCoatDiffuse(const RoughTransmittanceTables& t, const RoughTran
     return t.transmittance(line, cosI) * t.transmittance(line, cosO) * kInvPi / (eta * eta);
 }
 
+/// The same from the two transmittances T12 = T(η, α, cosθi), T21 = T(η, α, cosθo).
+inline float roughCoatDiffuse(float t12, float t21, float eta) { return t12 * t21 * kInvPi / (eta * eta); }
+
+/// T(η_c, α, μ) for the channels c of one BSDF: read from collapsed μ-lines (one per channel,
+/// RoughTablesAtAlpha::collapse; constant α) or, in general (textured α), from the (η, α)
+/// stencils of the full tables. Both interpolate the same tables (eq. 2.44); the collapsed lines
+/// are the stencil sums done once, so the two agree up to float rounding.
+struct RoughCoatChannels {
+    const RoughTransmittanceTables* tables = nullptr;
+    const RoughTransmittanceTables::Line* stencils = nullptr;  // general: one per channel
+    const float* lines = nullptr;                                // collapsed: channel c at lines + c·nMu
+    int nMu = 0;
+
+    /// T of channels 0..n−1 at μ = cosTheta, into out[0..n).
+    void transmittance(float cosTheta, int n, float* out) const {
+        if (lines) {
+            const RoughStencil s = roughMuStencil(cosTheta, nMu);  // shared by all channels
+            for (int c = 0; c < n; ++c) out[c] = roughLineTransmittance(lines + size_t(c) * size_t(nMu), s);
+        } else {
+            for (int c = 0; c < n; ++c) out[c] = tables->transmittance(stencils[c], cosTheta);
+        }
+    }
+};
+
 /// Effective base albedo ρ' (linear: ρ/(1 − Fdr); nonlinear: ρ/(1 − ρ Fdr)).
 inline float roughCoatAlbedo(float rho, float fdr, bool nonlinear) {
     return nonlinear ? rho / (1.0f - rho * fdr) : rho / (1.0f - fdr);
