@@ -256,10 +256,14 @@ public:
             if (wl.isRGB() && n == 3) {  // the per-material lines of the three fixed channel η
                 q.coatT.lines = rgbLines_.data();
                 for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
-            } else {  // spectral: η(λ) varies per path; fold the η stencil once per shading point
-                auto* lines = static_cast<float*>(arena.allocate(sizeof(float) * size_t(n) * nMu, alignof(float)));
-                for (int c = 0; c < n; ++c) ch[c].fdr = 1.0f - atAlpha_->collapse(ch[c].eta, lines + size_t(c) * nMu);
-                q.coatT.lines = lines;
+            } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
+                auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
+                for (int c = 0; c < n; ++c) {
+                    se[c] = atAlpha_->etaStencil(ch[c].eta);
+                    ch[c].fdr = 1.0f - atAlpha_->diffuse(se[c]);  // eq. 3.19
+                }
+                q.coatT.atAlpha = &*atAlpha_;
+                q.coatT.etaStencils = se;
             }
         } else {  // textured α: the (η, α) stencils of the full tables
             using Line = RoughTransmittanceTables::Line;

@@ -220,16 +220,12 @@ RoughTablesAtAlpha::RoughTablesAtAlpha(const RoughTransmittanceTables& t, float 
     }
 }
 
+RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmullRom(etaCoord(eta, nEta_), nEta_); }
+
 float RoughTablesAtAlpha::collapse(float eta, float* line) const {
-    const RoughStencil se = roughCatmullRom(etaCoord(eta, nEta_), nEta_);
-    for (int m = 0; m < nMu_; ++m) line[m] = 0.0f;
-    float td = 0;
-    for (int i = 0; i < se.count; ++i) {
-        const float* row = &ext_[size_t(se.idx[i]) * nMu_];
-        for (int m = 0; m < nMu_; ++m) line[m] += se.w[i] * row[m];
-        td += se.w[i] * diffuse_[size_t(se.idx[i])];
-    }
-    return std::clamp(td, 0.0f, 1.0f);  // eq. 2.51
+    const RoughStencil se = etaStencil(eta);
+    for (int m = 0; m < nMu_; ++m) line[m] = lineNode(se, m);
+    return diffuse(se);
 }
 
 // ---- Disk cache ----

@@ -133,6 +133,43 @@ public:
     /// same (η, this α) always gives bit-identical values.
     float collapse(float eta, float* line) const;
 
+    /// The same without writing the line (for η that change per path, spectral mode): the η
+    /// stencil, Td from it, and T at a μ stencil computing only the 4 line nodes it needs. Each
+    /// performs the float operations of collapse() and roughLineTransmittance(), so
+    /// transmittance(etaStencil(η), μ) == roughLineTransmittance(line of collapse(η), μ) exactly.
+    RoughStencil etaStencil(float eta) const;
+    float diffuse(const RoughStencil& se) const {
+        float td = 0;
+        for (int i = 0; i < se.count; ++i) td += se.w[i] * diffuse_[size_t(se.idx[i])];
+        return std::clamp(td, 0.0f, 1.0f);  // eq. 2.51
+    }
+    /// Node m of the collapsed μ-line of se (line[m] of collapse()).
+    float lineNode(const RoughStencil& se, int m) const {
+        float v = 0.0f;
+        for (int i = 0; i < se.count; ++i) v += se.w[i] * ext_[size_t(se.idx[i]) * size_t(nMu_) + size_t(m)];
+        return v;
+    }
+    float transmittance(const RoughStencil& se, const RoughStencil& mu) const {
+        float v = 0;
+        if (se.count == 4 && mu.count == 4 && mu.idx[3] == mu.idx[0] + 3 && mu.idx[1] == mu.idx[0] + 1 &&
+            mu.idx[2] == mu.idx[0] + 2) {
+            // Interior stencils (the common case): the lineNode sums unrolled, same operations in
+            // the same order (0 + w0 r0 + w1 r1 + w2 r2 + w3 r3 per node, then the μ sum).
+            const size_t m0 = size_t(mu.idx[0]);
+            const float* r0 = &ext_[size_t(se.idx[0]) * size_t(nMu_) + m0];
+            const float* r1 = &ext_[size_t(se.idx[1]) * size_t(nMu_) + m0];
+            const float* r2 = &ext_[size_t(se.idx[2]) * size_t(nMu_) + m0];
+            const float* r3 = &ext_[size_t(se.idx[3]) * size_t(nMu_) + m0];
+            float node[4];
+            for (int k = 0; k < 4; ++k)
+                node[k] = 0.0f + se.w[0] * r0[k] + se.w[1] * r1[k] + se.w[2] * r2[k] + se.w[3] * r3[k];
+            for (int k = 0; k < 4; ++k) v += mu.w[k] * node[k];
+        } else {
+            for (int k = 0; k < mu.count; ++k) v += mu.w[k] * lineNode(se, mu.idx[k]);
+        }
+        return std::clamp(v, 0.0f, 1.0f);
+    }
+
 private:
     float alpha_ = 0.0f;
     int nEta_ = 0, nMu_ = 0;

@@ -67,14 +67,18 @@ inline float roughCoatDiffuse(const RoughTransmittanceTables& t, const RoughTran
 /// The same from the two transmittances T12 = T(η, α, cosθi), T21 = T(η, α, cosθo).
 inline float roughCoatDiffuse(float t12, float t21, float eta) { return t12 * t21 * kInvPi / (eta * eta); }
 
-/// T(η_c, α, μ) for the channels c of one BSDF: read from collapsed μ-lines (one per channel,
-/// RoughTablesAtAlpha::collapse; constant α) or, in general (textured α), from the (η, α)
-/// stencils of the full tables. Both interpolate the same tables (eq. 2.44); the collapsed lines
-/// are the stencil sums done once, so the two agree up to float rounding.
+/// T(η_c, α, μ) for the channels c of one BSDF, read (constant α) from collapsed μ-lines (one per
+/// channel, RoughTablesAtAlpha::collapse; RGB mode), from the α-collapsed tables with one η stencil
+/// per channel (RoughTablesAtAlpha::transmittance; spectral mode, bit-equal to the lines), or, in
+/// general (textured α), from the (η, α) stencils of the full tables. All interpolate the same
+/// tables (eq. 2.44); the collapsed forms do the stencil sums once, so they agree with the
+/// general one up to float rounding.
 struct RoughCoatChannels {
     const RoughTransmittanceTables* tables = nullptr;
     const RoughTransmittanceTables::Line* stencils = nullptr;  // general: one per channel
     const float* lines = nullptr;                                // collapsed: channel c at lines + c·nMu
+    const RoughTablesAtAlpha* atAlpha = nullptr;                 // with etaStencils: one per channel
+    const RoughStencil* etaStencils = nullptr;
     int nMu = 0;
 
     /// T of channels 0..n−1 at μ = cosTheta, into out[0..n).
@@ -82,6 +86,9 @@ struct RoughCoatChannels {
         if (lines) {
             const RoughStencil s = roughMuStencil(cosTheta, nMu);  // shared by all channels
             for (int c = 0; c < n; ++c) out[c] = roughLineTransmittance(lines + size_t(c) * size_t(nMu), s);
+        } else if (etaStencils) {
+            const RoughStencil s = roughMuStencil(cosTheta, nMu);
+            for (int c = 0; c < n; ++c) out[c] = atAlpha->transmittance(etaStencils[c], s);
         } else {
             for (int c = 0; c < n; ++c) out[c] = tables->transmittance(stencils[c], cosTheta);
         }

@@ -202,7 +202,7 @@ TEST(RoughPlasticTables, CacheDirectoryFromEnvironment) {
 
 TEST(RoughPlasticTables, CollapsedLinesEqualGeneralInterpolation) {
     // RoughTablesAtAlpha (the α stencil summed once) + collapse (the η stencil summed into one
-    // μ-line) read with a 4-node μ stencil must give the tricubic interpolation of eq. 2.44 and
+    // μ-line) read with a 4-node μ stencil (and the lazy etaStencil/transmittance form) must give the tricubic interpolation of eq. 2.44 and
     // the bicubic Td of eq. 2.51 up to float rounding: grid nodes, domain ends, values between
     // nodes and random points, both distributions.
     Pcg32 rng(11, 3);
@@ -230,8 +230,12 @@ TEST(RoughPlasticTables, CollapsedLinesEqualGeneralInterpolation) {
                 std::vector<float> again(line.size());
                 ASSERT_EQ(at.collapse(eta, again.data()), td);
                 ASSERT_EQ(again, line);
+                // The lazy form (η stencil on the α-collapsed tables, spectral mode) is bit-equal.
+                const RoughStencil se = at.etaStencil(eta);
+                ASSERT_EQ(at.diffuse(se), td);
                 for (float mu : mus) {
                     const float fast = roughLineTransmittance(line.data(), roughMuStencil(mu, at.nMu()));
+                    ASSERT_EQ(at.transmittance(se, roughMuStencil(mu, at.nMu())), fast) << eta << " " << alpha << " " << mu;
                     const float general = t.transmittance(eta, alpha, mu);
                     maxErrT = std::max(maxErrT, double(std::abs(fast - general)));
                     ++count;
