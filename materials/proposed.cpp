@@ -20,6 +20,10 @@
 //   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
+#include <limits>
+#include <optional>
+#include <vector>
+
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/thesis_channels.h"
@@ -32,40 +36,47 @@ enum class PhaseMode { Off, Total, PerReflection };
 
 class ProposedBSDF final : public BSDF {
 public:
+    /// Per-channel constants of one shading point.
+    struct Channel {
+        float eta, etaT, lambda;  // η_c = η_t,c/η_i, η_t,c, λ_c (nm)
+        float ws, wdEff;          // ws and the effective diffuse weight wd/(1 − Rd) (eq. 3.16)
+        float fdr;                // Rd = Fdr = 1 − Td(η_c, α) (eq. 3.19)
+    };
     struct Params {
-        const RoughTransmittanceTables* tables;
-        const RoughTransmittanceTables::Line* lines;  // per channel: table stencil of (η_c, α)
+        RoughCoatChannels coatT;  // T(η_c, α, μ) per channel (collapsed lines or table stencils)
         MicrofacetDistribution dist;
-        float alpha, etaI, d;
+        float d;
         Frame coat;        // frame of the top normal n0 (coat microfacet model)
-        vec3 n1;           // base normal (diffuse sampling)
+        Frame base;        // frame of the base normal n1 (diffuse sampling)
+        vec3 n1;
         bool tilted0, tilted1;
         PhaseMode phase;
-        SampledSpectrum eta, etaT, lambda, ws, wd;
+        int n;             // channels (wavelengths) of the path
+        const Channel* ch;
+        float wsAvg, wdAvg;  // channel averages of ws and wd (sampling probability)
     };
 
-    explicit ProposedBSDF(const Params& p) : p_(p), wdEff_(p.wd), fdr_(p.wd) {
-        for (int c = 0; c < p_.eta.size(); ++c) {
-            fdr_[c] = 1.0f - p_.tables->internalDiffuseTransmittance(p_.eta[c], p_.alpha);  // eq. 3.19
-            wdEff_[c] = roughCoatAlbedo(p_.wd[c], fdr_[c], false);                          // wd/(1 − Rd)
-        }
-    }
+    explicit ProposedBSDF(const Params& p) : p_(p) {}
 
     vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
-        const int n = p_.eta.size();
+        const int n = p_.n;
         SampledSpectrum f(n);
         if (wo.z <= 0 || wi.z <= 0) return f;
-        const vec3 woC = toCoat(wo), wiC = toCoat(wi);
+        const WoTerms& o = woTerms(wo);
+        const vec3 woC = o.woC, wiC = toCoat(wi);
         if (woC.z <= 0 || wiC.z <= 0) return f;
-        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC);
+        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o);
+        float tI[kMaxWavelengths];  // T12 per channel (eq. 2.52); T21 is o.tO (eq. 2.53)
+        p_.coatT.transmittance(wiC.z, n, tI);
         for (int c = 0; c < n; ++c) {
-            const float eta = p_.eta[c];
+            const Channel& k = p_.ch[c];
+            const float eta = k.eta;
             const float s = roughCoatSpecular(g, woC, eta);
-            const float d = roughCoatDiffuse(*p_.tables, p_.lines[c], eta, wiC.z, woC.z);
-            const float fr = p_.ws[c] * s;     // eq. 3.15
-            const float ft = wdEff_[c] * d;    // eq. 3.16
+            const float d = roughCoatDiffuse(tI[c], o.tO[c], eta);
+            const float fr = k.ws * s;     // eq. 3.15
+            const float ft = k.wdEff * d;  // eq. 3.16
             if (p_.phase == PhaseMode::Off) {
                 f[c] = fr + ft;
                 continue;
@@ -73,13 +84,13 @@ public:
             // Specular refraction of wi and wo into the film about n0 (eq. 3.1–3.2 reading).
             const float inv = 1.0f / eta;
             const float cosTi = safeSqrt(1.0f - inv * inv * (1.0f - wiC.z * wiC.z));
-            const float cosTo = safeSqrt(1.0f - inv * inv * (1.0f - woC.z * woC.z));
-            const float phi = kPi * p_.etaT[c] * p_.d / p_.lambda[c] * (cosTi + cosTo);  // eq. 3.20
+            const float cosTo = o.cosTo[c];
+            const float phi = kPi * k.etaT * p_.d / k.lambda * (cosTi + cosTo);  // eq. 3.20
             const float cos2phi = std::cos(2.0f * phi);
             if (p_.phase == PhaseMode::Total) {
                 f[c] = fr + ft + 2.0f * cos2phi * std::sqrt(fr * ft);  // eqs. 3.21–3.22
             } else {
-                const float rd = fdr_[c], r = std::sqrt(rd);
+                const float rd = k.fdr, r = std::sqrt(rd);
                 const float a1sq = ft * (1.0f - rd);
                 const float den = std::max(1e-12f, 1.0f - 2.0f * r * cos2phi + rd);
                 f[c] = std::max(0.0f, fr + a1sq / den + 2.0f * std::sqrt(fr * a1sq) * (cos2phi - r) / den);
@@ -88,18 +99,12 @@ public:
         return f;
     }
 
-    float specularProbability(const vec3& woC) const {
-        float t = 0.0f;
-        const int n = p_.eta.size();
-        for (int c = 0; c < n; ++c) t += p_.tables->transmittance(p_.lines[c], woC.z);
-        return roughCoatSpecularProbability(p_.ws.average(), p_.wd.average(), t / float(n));
-    }
-
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
         if (wo.z <= 0) return std::nullopt;
-        const vec3 woC = toCoat(wo);
+        const WoTerms& o = woTerms(wo);
+        const vec3 woC = o.woC;
         if (woC.z <= 0) return std::nullopt;
-        const float ps = specularProbability(woC);
+        const float ps = o.ps;
         vec3 wi;
         uint32_t flags;
         if (uc < ps) {  // eqs. 3.23–3.25 (visible normals of the coat)
@@ -108,7 +113,7 @@ public:
             flags = kBSDFReflection | kBSDFGlossy;
         } else {  // eqs. 3.27–3.28 (cosine lobe about n1)
             const vec3 l = sampleCosineHemisphere(u);
-            wi = p_.tilted1 ? Frame::fromNormal(p_.n1).toWorld(l) : l;
+            wi = p_.tilted1 ? p_.base.toWorld(l) : l;
             flags = kBSDFReflection | kBSDFDiffuse;
         }
         if (wi.z <= 0) return std::nullopt;
@@ -118,18 +123,51 @@ public:
     /// Mixture density (eq. 3.30 with the selection probabilities): P p_spec + (1 − P) (wi·n1)/π.
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
         if (wo.z <= 0 || wi.z <= 0) return 0.0f;
-        const vec3 woC = toCoat(wo);
-        if (woC.z <= 0) return 0.0f;
-        const float ps = specularProbability(woC);
+        const WoTerms& o = woTerms(wo);
+        if (o.woC.z <= 0) return 0.0f;
+        const float ps = o.ps;
         const float cosB = p_.tilted1 ? glm::dot(wi, p_.n1) : wi.z;
-        return ps * roughCoatSpecularPdf(p_.dist, woC, toCoat(wi)) + (1.0f - ps) * cosineHemispherePdf(cosB);
+        return ps * roughCoatSpecularPdf(p_.dist, o.woC, toCoat(wi), o.g1o) + (1.0f - ps) * cosineHemispherePdf(cosB);
     }
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
 
 private:
+    /// What depends on wo alone. The integrator calls eval, pdf and sample of one shading point with
+    /// the same wo (next-event estimation: eval + pdf; the BSDF sample: pdf + eval), so these are
+    /// computed at the first call with a new wo and reused (pure functions of wo: the same values
+    /// as recomputing them). A BSDF lives in one thread's Arena for one path sample
+    /// (materials/material.h), so the mutable cache is never shared between threads.
+    struct WoTerms {
+        vec3 wo{std::numeric_limits<float>::quiet_NaN()};  // key (NaN: never equal, first call fills)
+        vec3 woC{0.0f};  // wo in the coat frame
+        float g1o = 0;   // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
+        float ps = 0;    // specular sampling probability (roughCoatSpecularProbability)
+        float tO[kMaxWavelengths];     // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
+        float cosTo[kMaxWavelengths];  // cosine of wo refracted into the film per channel (eq. 3.20)
+    };
+
+    const WoTerms& woTerms(const vec3& wo) const {
+        WoTerms& o = wo_;
+        if (wo == o.wo) return o;
+        o.wo = wo;
+        o.woC = toCoat(wo);
+        if (o.woC.z <= 0) return o;  // callers return zero / no sample
+        const int n = p_.n;
+        o.g1o = 1.0f / (1.0f + p_.dist.Lambda(o.woC));  // MicrofacetDistribution::smithG1's factor
+        p_.coatT.transmittance(o.woC.z, n, o.tO);
+        float t = 0.0f;
+        for (int c = 0; c < n; ++c) t += o.tO[c];
+        o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
+        for (int c = 0; c < n; ++c) {
+            const float inv = 1.0f / p_.ch[c].eta;
+            o.cosTo[c] = safeSqrt(1.0f - inv * inv * (1.0f - o.woC.z * o.woC.z));
+        }
+        return o;
+    }
+
     Params p_;
-    SampledSpectrum wdEff_, fdr_;
+    mutable WoTerms wo_;
 };
 
 class ProposedMaterial final : public Material {
@@ -143,6 +181,7 @@ public:
         tilted0_ = !(n0.x == 0 && n0.y == 0);
         tilted1_ = !(n1_.x == 0 && n1_.y == 0);
         coat_ = Frame::fromNormal(n0);
+        base_ = Frame::fromNormal(n1_);
         etaI_ = p.getFloat("eta_i", 1.0f);
         lambdas_ = p.getRGB("wavelengths", thesisDefaultWavelengths());
         for (int c = 0; c < 3; ++c)
@@ -173,34 +212,75 @@ public:
             failAt(p.locationOf("phase_mode"), "proposed: phase_mode must be 'total' or 'per_reflection', got '", mode, "'");
         phase_ = !phase ? PhaseMode::Off : mode == "total" ? PhaseMode::Total : PhaseMode::PerReflection;
         tables_ = &roughPlasticTables(type_);
+        // Constant α (the thesis setting): collapse the tables along α once, and in RGB mode (fixed
+        // η per channel) fold the η stencil too: one μ-line and one Fdr per channel, shared by all
+        // shading points (RoughTablesAtAlpha; exact up to float rounding).
+        if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get())) {
+            atAlpha_.emplace(*tables_, std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax));
+            const int nMu = atAlpha_->nMu();
+            rgbLines_.assign(size_t(3) * nMu, 0.0f);
+            for (int k = 0; k < 3; ++k)
+                rgbFdr_[k] = 1.0f - atAlpha_->collapse(etaT_.channel(k) / etaI_, &rgbLines_[size_t(k) * nMu]);  // eq. 3.19
+        }
     }
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
+        const int n = wl.size();
         ProposedBSDF::Params q;
-        q.tables = tables_;
-        q.alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
-        q.dist = MicrofacetDistribution(type_, q.alpha, q.alpha);
-        q.etaI = etaI_;
+        const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
+        q.dist = MicrofacetDistribution(type_, alpha, alpha);
         q.d = std::max(0.0f, thickness_->eval(sp.tex));
         q.coat = coat_;
+        q.base = base_;
         q.n1 = n1_;
         q.tilted0 = tilted0_;
         q.tilted1 = tilted1_;
         q.phase = phase_;
-        q.etaT = etaT_.sample(wl);
-        q.eta = q.etaT / etaI_;
-        q.lambda = channelLambdas(wl, lambdas_);
-        q.ws = clampZero(ws_->eval(sp.tex, wl));
-        q.wd = clampZero(wd_->eval(sp.tex, wl));
-        using Line = RoughTransmittanceTables::Line;
-        auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(wl.size()), alignof(Line)));
-        for (int c = 0; c < wl.size(); ++c) new (&lines[c]) Line(tables_->line(q.eta[c], q.alpha));
-        q.lines = lines;
+        q.n = n;
+        const SampledSpectrum etaT = etaT_.sample(wl), lambda = channelLambdas(wl, lambdas_);
+        const SampledSpectrum ws = clampZero(ws_->eval(sp.tex, wl)), wd = clampZero(wd_->eval(sp.tex, wl));
+        q.wsAvg = ws.average();
+        q.wdAvg = wd.average();
+        using Channel = ProposedBSDF::Channel;
+        auto* ch = static_cast<Channel*>(arena.allocate(sizeof(Channel) * size_t(n), alignof(Channel)));
+        for (int c = 0; c < n; ++c) {
+            ch[c].eta = etaT[c] / etaI_;
+            ch[c].etaT = etaT[c];
+            ch[c].lambda = lambda[c];
+            ch[c].ws = ws[c];
+        }
+        q.coatT.tables = tables_;
+        if (atAlpha_) {
+            const int nMu = atAlpha_->nMu();
+            q.coatT.nMu = nMu;
+            if (wl.isRGB() && n == 3) {  // the per-material lines of the three fixed channel η
+                q.coatT.lines = rgbLines_.data();
+                for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
+            } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
+                auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
+                for (int c = 0; c < n; ++c) {
+                    se[c] = atAlpha_->etaStencil(ch[c].eta);
+                    ch[c].fdr = 1.0f - atAlpha_->diffuse(se[c]);  // eq. 3.19
+                }
+                q.coatT.atAlpha = &*atAlpha_;
+                q.coatT.etaStencils = se;
+            }
+        } else {  // textured α: the (η, α) stencils of the full tables
+            using Line = RoughTransmittanceTables::Line;
+            auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(n), alignof(Line)));
+            for (int c = 0; c < n; ++c) {
+                new (&lines[c]) Line(tables_->line(ch[c].eta, alpha));
+                ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(ch[c].eta, alpha);  // eq. 3.19
+            }
+            q.coatT.stencils = lines;
+        }
+        for (int c = 0; c < n; ++c) ch[c].wdEff = roughCoatAlbedo(wd[c], ch[c].fdr, false);  // wd/(1 − Rd)
+        q.ch = ch;
         return arena.make<ProposedBSDF>(q);
     }
 
 private:
-    Frame coat_;
+    Frame coat_, base_;
     vec3 n1_, lambdas_;
     bool tilted0_, tilted1_;
     float etaI_;
@@ -210,6 +290,9 @@ private:
     SpectrumTexturePtr ws_, wd_;
     PhaseMode phase_;
     const RoughTransmittanceTables* tables_;
+    std::optional<RoughTablesAtAlpha> atAlpha_;  // constant α only
+    std::vector<float> rgbLines_;                // RGB mode: channel k's μ-line at k · nMu
+    float rgbFdr_[3] = {0, 0, 0};
 };
 
 std::shared_ptr<Material> createProposed(const Properties& p) { return std::make_shared<ProposedMaterial>(p); }

@@ -160,48 +160,6 @@ RoughTransmittanceTables buildRoughTables(MicrofacetType type, const RoughTableR
 
 namespace {
 
-/// Up to four (index, weight) pairs of a cubic Catmull-Rom stencil at grid coordinate x ∈ [0, n−1].
-/// Ghost nodes beyond the ends are linear extrapolations (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}),
-/// folded into the weights.
-struct Stencil {
-    int idx[4];
-    float w[4];
-    int count = 0;
-    void add(int i, float wt) {
-        for (int k = 0; k < count; ++k)
-            if (idx[k] == i) {
-                w[k] += wt;
-                return;
-            }
-        idx[count] = i;
-        w[count++] = wt;
-    }
-};
-
-Stencil catmullRom(float x, int n) {
-    x = std::clamp(x, 0.0f, float(n - 1));
-    const int i = std::min(int(x), n - 2);
-    const float t = x - float(i), t2 = t * t, t3 = t2 * t;
-    const float wts[4] = {-0.5f * t + t2 - 0.5f * t3,          // eq. 2.46
-                          1.0f - 2.5f * t2 + 1.5f * t3,        // eq. 2.47
-                          0.5f * t + 2.0f * t2 - 1.5f * t3,    // eq. 2.48
-                          -0.5f * t2 + 0.5f * t3};             // eq. 2.49
-    Stencil s;
-    for (int k = 0; k < 4; ++k) {
-        const int j = i - 1 + k;
-        if (j < 0) {
-            s.add(0, 2.0f * wts[k]);
-            s.add(1, -wts[k]);
-        } else if (j > n - 1) {
-            s.add(n - 1, 2.0f * wts[k]);
-            s.add(n - 2, -wts[k]);
-        } else {
-            s.add(j, wts[k]);
-        }
-    }
-    return s;
-}
-
 float etaCoord(float eta, int n) {
     using T = RoughTransmittanceTables;
     return std::sqrt(std::clamp((eta - T::kEtaMin) / (T::kEtaMax - T::kEtaMin), 0.0f, 1.0f)) * float(n - 1);
@@ -214,8 +172,8 @@ float alphaCoord(float alpha, int n) {
 }  // namespace
 
 RoughTransmittanceTables::Line RoughTransmittanceTables::line(float eta, float alpha) const {
-    const Stencil se = catmullRom(etaCoord(eta, res.nEta), res.nEta);
-    const Stencil sa = catmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
+    const RoughStencil se = roughCatmullRom(etaCoord(eta, res.nEta), res.nEta);
+    const RoughStencil sa = roughCatmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
     Line l;
     for (int i = 0; i < se.count; ++i)
         for (int j = 0; j < sa.count; ++j) {
@@ -226,7 +184,7 @@ RoughTransmittanceTables::Line RoughTransmittanceTables::line(float eta, float a
 }
 
 float RoughTransmittanceTables::transmittance(const Line& l, float cosTheta) const {
-    const Stencil sm = catmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
+    const RoughStencil sm = roughCatmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
     float v = 0;  // eq. 2.44
     for (int i = 0; i < l.count; ++i) {
         const float* row = &ext[size_t(l.offset[i])];
@@ -238,12 +196,36 @@ float RoughTransmittanceTables::transmittance(const Line& l, float cosTheta) con
 }
 
 float RoughTransmittanceTables::internalDiffuseTransmittance(float eta, float alpha) const {
-    const Stencil se = catmullRom(etaCoord(eta, res.nEta), res.nEta);
-    const Stencil sa = catmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
+    const RoughStencil se = roughCatmullRom(etaCoord(eta, res.nEta), res.nEta);
+    const RoughStencil sa = roughCatmullRom(alphaCoord(alpha, res.nAlpha), res.nAlpha);
     float v = 0;  // eq. 2.51
     for (int i = 0; i < se.count; ++i)
         for (int j = 0; j < sa.count; ++j) v += se.w[i] * sa.w[j] * diffuse[size_t(se.idx[i]) * res.nAlpha + sa.idx[j]];
     return std::clamp(v, 0.0f, 1.0f);
+}
+
+RoughTablesAtAlpha::RoughTablesAtAlpha(const RoughTransmittanceTables& t, float alpha)
+    : alpha_(alpha), nEta_(t.res.nEta), nMu_(t.res.nMu) {
+    const RoughStencil sa = roughCatmullRom(alphaCoord(alpha, t.res.nAlpha), t.res.nAlpha);
+    ext_.assign(size_t(nEta_) * nMu_, 0.0f);
+    diffuse_.assign(size_t(nEta_), 0.0f);
+    for (int i = 0; i < nEta_; ++i) {
+        float* out = &ext_[size_t(i) * nMu_];
+        for (int j = 0; j < sa.count; ++j) {
+            const size_t cell = size_t(i) * t.res.nAlpha + sa.idx[j];
+            const float* row = &t.ext[cell * nMu_];
+            for (int m = 0; m < nMu_; ++m) out[m] += sa.w[j] * row[m];
+            diffuse_[i] += sa.w[j] * t.diffuse[cell];
+        }
+    }
+}
+
+RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmullRom(etaCoord(eta, nEta_), nEta_); }
+
+float RoughTablesAtAlpha::collapse(float eta, float* line) const {
+    const RoughStencil se = etaStencil(eta);
+    for (int m = 0; m < nMu_; ++m) line[m] = lineNode(se, m);
+    return diffuse(se);
 }
 
 // ---- Disk cache ----

@@ -17,6 +17,8 @@
 // See docs/thesis_models.md for the resolution and the measured interpolation error.
 #pragma once
 
+#include <algorithm>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +66,137 @@ public:
     static float alphaNode(int i, int n) { return kAlphaMax * sqr(float(i) / float(n - 1)); }
     static float muNode(int i, int n) { return float(i) / float(n - 1); }
 };
+
+/// Catmull-Rom stencil (thesis eqs. 2.45–2.50): up to four (index, weight) pairs at grid
+/// coordinate x ∈ [0, n−1]. Ghost nodes beyond the ends are linear extrapolations
+/// (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}), folded into the weights.
+struct RoughStencil {
+    int idx[4];
+    float w[4];
+    int count = 0;
+};
+inline void roughStencilAdd(RoughStencil& s, int i, float wt) {
+    for (int k = 0; k < s.count; ++k)
+        if (s.idx[k] == i) {
+            s.w[k] += wt;
+            return;
+        }
+    s.idx[s.count] = i;
+    s.w[s.count++] = wt;
+}
+
+inline RoughStencil roughCatmullRom(float x, int n) {
+    x = std::clamp(x, 0.0f, float(n - 1));
+    const int i = std::min(int(x), n - 2);
+    const float t = x - float(i), t2 = t * t, t3 = t2 * t;
+    const float wts[4] = {-0.5f * t + t2 - 0.5f * t3,          // eq. 2.46
+                          1.0f - 2.5f * t2 + 1.5f * t3,        // eq. 2.47
+                          0.5f * t + 2.0f * t2 - 1.5f * t3,    // eq. 2.48
+                          -0.5f * t2 + 0.5f * t3};             // eq. 2.49
+    RoughStencil s;
+    if (i >= 1 && i + 2 <= n - 1) {  // interior: four distinct nodes, no ghosts
+        for (int k = 0; k < 4; ++k) {
+            s.idx[k] = i - 1 + k;
+            s.w[k] = wts[k];
+        }
+        s.count = 4;
+        return s;
+    }
+    for (int k = 0; k < 4; ++k) {
+        const int j = i - 1 + k;
+        if (j < 0) {
+            roughStencilAdd(s, 0, 2.0f * wts[k]);
+            roughStencilAdd(s, 1, -wts[k]);
+        } else if (j > n - 1) {
+            roughStencilAdd(s, n - 1, 2.0f * wts[k]);
+            roughStencilAdd(s, n - 2, -wts[k]);
+        } else {
+            roughStencilAdd(s, j, wts[k]);
+        }
+    }
+    return s;
+}
+
+/// The tables at one fixed α, collapsed along α once. Eqs. 2.44 and 2.51 are linear in the table
+/// values, so Σ_η Σ_α w_η w_α V[η, α, ·] = Σ_η w_η (Σ_α w_α V[η, α, ·]): per η node this keeps
+/// one μ-line of T and one Td (exact up to float rounding). collapse() then folds the η stencil
+/// too, giving the single μ-line of T(η, α, ·) that a BSDF with fixed (η, α) reads with a
+/// 4-node Catmull-Rom in μ (instead of 16 lines × 4 nodes).
+class RoughTablesAtAlpha {
+public:
+    RoughTablesAtAlpha() = default;
+    RoughTablesAtAlpha(const RoughTransmittanceTables& t, float alpha);
+
+    float alpha() const { return alpha_; }
+    int nMu() const { return nMu_; }
+    /// Writes the μ-line of T(η, α, ·) (nMu() values at the μ nodes, unclamped) to `line` and
+    /// returns Td(η, α) (clamped to [0, 1] as internalDiffuseTransmittance). Deterministic: the
+    /// same (η, this α) always gives bit-identical values.
+    float collapse(float eta, float* line) const;
+
+    /// The same without writing the line (for η that change per path, spectral mode): the η
+    /// stencil, Td from it, and T at a μ stencil computing only the 4 line nodes it needs. Each
+    /// performs the float operations of collapse() and roughLineTransmittance(), so
+    /// transmittance(etaStencil(η), μ) == roughLineTransmittance(line of collapse(η), μ) exactly.
+    RoughStencil etaStencil(float eta) const;
+    float diffuse(const RoughStencil& se) const {
+        float td = 0;
+        for (int i = 0; i < se.count; ++i) td += se.w[i] * diffuse_[size_t(se.idx[i])];
+        return std::clamp(td, 0.0f, 1.0f);  // eq. 2.51
+    }
+    /// Node m of the collapsed μ-line of se (line[m] of collapse()).
+    float lineNode(const RoughStencil& se, int m) const {
+        float v = 0.0f;
+        for (int i = 0; i < se.count; ++i) v += se.w[i] * ext_[size_t(se.idx[i]) * size_t(nMu_) + size_t(m)];
+        return v;
+    }
+    float transmittance(const RoughStencil& se, const RoughStencil& mu) const {
+        float v = 0;
+        if (se.count == 4 && mu.count == 4 && mu.idx[3] == mu.idx[0] + 3 && mu.idx[1] == mu.idx[0] + 1 &&
+            mu.idx[2] == mu.idx[0] + 2) {
+            // Interior stencils (the common case): the lineNode sums of the four consecutive μ
+            // nodes side by side, same operations in the same order (0 + w0 r0 + w1 r1 + w2 r2 +
+            // w3 r3 per node, then the μ sum).
+            const size_t m0 = size_t(mu.idx[0]);
+            const float* r0 = &ext_[size_t(se.idx[0]) * size_t(nMu_) + m0];
+            const float* r1 = &ext_[size_t(se.idx[1]) * size_t(nMu_) + m0];
+            const float* r2 = &ext_[size_t(se.idx[2]) * size_t(nMu_) + m0];
+            const float* r3 = &ext_[size_t(se.idx[3]) * size_t(nMu_) + m0];
+            // Lane k = node m0 + k (GCC/Clang vector extension: element-wise IEEE operations,
+            // the same roundings as the scalar lineNode).
+            typedef float V4 __attribute__((vector_size(16)));
+            const float* rows[4] = {r0, r1, r2, r3};
+            V4 node = {0.0f, 0.0f, 0.0f, 0.0f};
+            for (int i = 0; i < 4; ++i) {
+                V4 r;
+                std::memcpy(&r, rows[i], sizeof(r));
+                const V4 w = {se.w[i], se.w[i], se.w[i], se.w[i]};
+                node = node + w * r;
+            }
+            for (int k = 0; k < 4; ++k) v += mu.w[k] * node[k];
+        } else {
+            for (int k = 0; k < mu.count; ++k) v += mu.w[k] * lineNode(se, mu.idx[k]);
+        }
+        return std::clamp(v, 0.0f, 1.0f);
+    }
+
+private:
+    float alpha_ = 0.0f;
+    int nEta_ = 0, nMu_ = 0;
+    std::vector<float> ext_;      // Σ_α w_α T[η_i, α, μ_m], index i · nMu + m
+    std::vector<float> diffuse_;  // Σ_α w_α Td[η_i, α]
+};
+
+/// μ stencil of a direction with cosine cosTheta on lines of nMu nodes (clamped to [0, 1]).
+inline RoughStencil roughMuStencil(float cosTheta, int nMu) {
+    return roughCatmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(nMu - 1), nMu);
+}
+/// T on a collapsed μ-line (eq. 2.44 after the collapse), clamped to [0, 1] as transmittance().
+inline float roughLineTransmittance(const float* line, const RoughStencil& mu) {
+    float v = 0;
+    for (int k = 0; k < mu.count; ++k) v += mu.w[k] * line[mu.idx[k]];
+    return std::clamp(v, 0.0f, 1.0f);
+}
 
 /// Brute-force directional transmittance T(η, α, μ) (double-precision quadrature with `q` points
 /// per dimension and piece). η may be < 1 (light inside the denser medium; total internal

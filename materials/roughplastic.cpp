@@ -19,25 +19,45 @@ namespace {
 
 class RoughPlasticBSDF final : public BSDF {
 public:
-    RoughPlasticBSDF(const RoughTransmittanceTables* t, MicrofacetDistribution dist, float alpha, float eta,
-                     const SampledSpectrum& ks, const SampledSpectrum& rho, bool nonlinear)
-        : t_(t), line_(t->line(eta, alpha)), dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho),
-          rhoAvg_(rho.average()) {
-        const float fdr = 1.0f - t_->internalDiffuseTransmittance(eta_, alpha_);  // eq. 2.54
+    /// `line`: the collapsed μ-line of (η, α) (nMu values) with its Fdr, or nullptr to read the
+    /// full tables through the (η, α) stencil (textured α).
+    RoughPlasticBSDF(const RoughTransmittanceTables* t, const float* line, float lineFdr, MicrofacetDistribution dist,
+                     float alpha, float eta, const SampledSpectrum& ks, const SampledSpectrum& rho, bool nonlinear)
+        : dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho), rhoAvg_(rho.average()) {
+        coatT_.tables = t;
+        float fdr;
+        if (line) {
+            coatT_.lines = line;
+            coatT_.nMu = t->res.nMu;
+            fdr = lineFdr;
+        } else {
+            stencil_ = t->line(eta, alpha);
+            coatT_.stencils = &stencil_;
+            fdr = 1.0f - t->internalDiffuseTransmittance(eta_, alpha_);  // eq. 2.54
+        }
         for (int c = 0; c < rho.size(); ++c) rhoEff_[c] = roughCoatAlbedo(rho[c], fdr, nonlinear);
+    }
+
+    RoughPlasticBSDF(const RoughPlasticBSDF&) = delete;  // coatT_ may point at stencil_
+    RoughPlasticBSDF& operator=(const RoughPlasticBSDF&) = delete;
+
+    float transmittance(float cosTheta) const {
+        float t;
+        coatT_.transmittance(cosTheta, 1, &t);
+        return t;
     }
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
         SampledSpectrum f(ks_.size());
         if (wo.z <= 0 || wi.z <= 0) return f;
         const float s = roughCoatSpecular(roughCoatGeometry(dist_, wo, wi), wo, eta_);  // eq. 2.36
-        const float d = roughCoatDiffuse(*t_, line_, eta_, wi.z, wo.z);                 // eq. 2.55
+        const float d = roughCoatDiffuse(transmittance(wi.z), transmittance(wo.z), eta_);  // eq. 2.55
         for (int c = 0; c < f.size(); ++c) f[c] = ks_[c] * s + rhoEff_[c] * d;   // eq. 2.56
         return f;
     }
 
     float specularProbability(const vec3& wo) const {
-        return roughCoatSpecularProbability(ks_.average(), rhoAvg_, t_->transmittance(line_, wo.z));
+        return roughCoatSpecularProbability(ks_.average(), rhoAvg_, transmittance(wo.z));
     }
 
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
@@ -66,8 +86,8 @@ public:
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
 
 private:
-    const RoughTransmittanceTables* t_;
-    RoughTransmittanceTables::Line line_;  // table stencil of (η, α)
+    RoughCoatChannels coatT_;                  // one channel: T(η, α, μ)
+    RoughTransmittanceTables::Line stencil_;  // textured α: table stencil of (η, α)
     MicrofacetDistribution dist_;
     float alpha_, eta_;
     SampledSpectrum ks_, rhoEff_;
@@ -96,11 +116,18 @@ public:
         ks_ = p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
         tables_ = &roughPlasticTables(type_);  // first use builds or loads them
+        // Constant α: the (η, α) stencil collapsed once into one μ-line (RoughTablesAtAlpha).
+        if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get())) {
+            const RoughTablesAtAlpha atAlpha(*tables_, std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax));
+            line_.assign(size_t(atAlpha.nMu()), 0.0f);
+            lineFdr_ = 1.0f - atAlpha.collapse(eta_, line_.data());  // eq. 2.54
+        }
     }
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
-        return arena.make<RoughPlasticBSDF>(tables_, MicrofacetDistribution(type_, alpha, alpha), alpha, eta_,
+        return arena.make<RoughPlasticBSDF>(tables_, line_.empty() ? nullptr : line_.data(), lineFdr_,
+                                            MicrofacetDistribution(type_, alpha, alpha), alpha, eta_,
                                             clampZero(ks_->eval(sp.tex, wl)), clampZero(rho_->eval(sp.tex, wl)),
                                             nonlinear_);
     }
@@ -112,6 +139,8 @@ private:
     SpectrumTexturePtr rho_, ks_;
     bool nonlinear_;
     const RoughTransmittanceTables* tables_;
+    std::vector<float> line_;  // constant α: collapsed μ-line of (η, α)
+    float lineFdr_ = 0.0f;
 };
 
 std::shared_ptr<Material> createRoughPlastic(const Properties& p) { return std::make_shared<RoughPlasticMaterial>(p); }

@@ -34,6 +34,23 @@ inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, c
     return g;
 }
 
+/// roughCoatGeometry with wo's factor of the separable Smith G precomputed, g1o = 1/(1 + Λ(wo)):
+/// G(wi, wo, h) = G1(wi, h) · χ+(wo·h) g1o ([W07] eq. 23). For a distribution with
+/// ShadowingModel::SmithSeparable and the exact Smith G1 (the default the coat models create) this
+/// performs the same float operations as roughCoatGeometry(dist, wo, wi), so the result is equal.
+inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi,
+                                           float g1o) {
+    RoughCoatGeometry g;
+    if (wo.z <= 0 || wi.z <= 0) return g;
+    const vec3 h = wo + wi;
+    const float len = glm::length(h);
+    if (!(len > 0)) return g;
+    g.h = h / len;
+    const float g1wo = glm::dot(wo, g.h) * wo.z <= 0 ? 0.0f : g1o;  // MicrofacetDistribution::smithG1
+    g.dg = dist.D(g.h) * (dist.G1(wi, g.h) * g1wo) / (4.0f * wi.z * wo.z);
+    return g;
+}
+
 /// Specular microfacet reflection of the coat without weight: F(wo·h, η) · D G/(4 μi μo)
 /// (eqs. 2.6, 2.36, 3.15).
 inline float roughCoatSpecular(const RoughCoatGeometry& g, const vec3& wo, float eta) {
@@ -46,6 +63,37 @@ inline float roughCoatDiffuse(const RoughTransmittanceTables& t, const RoughTran
                               float cosI, float cosO) {
     return t.transmittance(line, cosI) * t.transmittance(line, cosO) * kInvPi / (eta * eta);
 }
+
+/// The same from the two transmittances T12 = T(η, α, cosθi), T21 = T(η, α, cosθo).
+inline float roughCoatDiffuse(float t12, float t21, float eta) { return t12 * t21 * kInvPi / (eta * eta); }
+
+/// T(η_c, α, μ) for the channels c of one BSDF, read (constant α) from collapsed μ-lines (one per
+/// channel, RoughTablesAtAlpha::collapse; RGB mode), from the α-collapsed tables with one η stencil
+/// per channel (RoughTablesAtAlpha::transmittance; spectral mode, bit-equal to the lines), or, in
+/// general (textured α), from the (η, α) stencils of the full tables. All interpolate the same
+/// tables (eq. 2.44); the collapsed forms do the stencil sums once, so they agree with the
+/// general one up to float rounding.
+struct RoughCoatChannels {
+    const RoughTransmittanceTables* tables = nullptr;
+    const RoughTransmittanceTables::Line* stencils = nullptr;  // general: one per channel
+    const float* lines = nullptr;                                // collapsed: channel c at lines + c·nMu
+    const RoughTablesAtAlpha* atAlpha = nullptr;                 // with etaStencils: one per channel
+    const RoughStencil* etaStencils = nullptr;
+    int nMu = 0;
+
+    /// T of channels 0..n−1 at μ = cosTheta, into out[0..n).
+    void transmittance(float cosTheta, int n, float* out) const {
+        if (lines) {
+            const RoughStencil s = roughMuStencil(cosTheta, nMu);  // shared by all channels
+            for (int c = 0; c < n; ++c) out[c] = roughLineTransmittance(lines + size_t(c) * size_t(nMu), s);
+        } else if (etaStencils) {
+            const RoughStencil s = roughMuStencil(cosTheta, nMu);
+            for (int c = 0; c < n; ++c) out[c] = atAlpha->transmittance(etaStencils[c], s);
+        } else {
+            for (int c = 0; c < n; ++c) out[c] = tables->transmittance(stencils[c], cosTheta);
+        }
+    }
+};
 
 /// Effective base albedo ρ' (linear: ρ/(1 − Fdr); nonlinear: ρ/(1 − ρ Fdr)).
 inline float roughCoatAlbedo(float rho, float fdr, bool nonlinear) {
@@ -69,6 +117,20 @@ inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3
     const float woh = glm::dot(wo, h);
     if (woh <= 0) return 0.0f;
     return dist.pdf(wo, h) / (4.0f * woh);
+}
+
+/// roughCoatSpecularPdf with wo's Smith G1 factor g1o = 1/(1 + Λ(wo)) precomputed, for wo.z > 0
+/// and visible-normal sampling: G1(wo, h) (wo·h)₊ D(h)/wo.z ([HD14] eq. 2) over 4 (wo·h). The
+/// same float operations as roughCoatSpecularPdf(dist, wo, wi) (MicrofacetDistribution::pdf).
+inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi, float g1o) {
+    vec3 h = wo + wi;
+    const float len = glm::length(h);
+    if (!(len > 0)) return 0.0f;
+    h /= len;
+    const float woh = glm::dot(wo, h);
+    if (woh <= 0) return 0.0f;
+    const float g1 = woh * wo.z <= 0 ? 0.0f : g1o;  // χ+ of smithG1(wo, h)
+    return g1 * std::max(0.0f, woh) * dist.D(h) / wo.z / (4.0f * woh);
 }
 
 }  // namespace iris

@@ -199,3 +199,72 @@ TEST(RoughPlasticTables, CacheDirectoryFromEnvironment) {
     else if (home && *home) EXPECT_EQ(roughTablesCacheDir(), std::string(home) + "/.cache/iris");
     if (old) ::setenv("IRIS_CACHE_DIR", saved.c_str(), 1);
 }
+
+TEST(RoughPlasticTables, CollapsedLinesEqualGeneralInterpolation) {
+    // RoughTablesAtAlpha (the α stencil summed once) + collapse (the η stencil summed into one
+    // μ-line) read with a 4-node μ stencil (and the lazy etaStencil/transmittance form) must give the tricubic interpolation of eq. 2.44 and
+    // the bicubic Td of eq. 2.51 up to float rounding: grid nodes, domain ends, values between
+    // nodes and random points, both distributions.
+    Pcg32 rng(11, 3);
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+        const RoughTransmittanceTables& t = roughPlasticTables(type);
+        std::vector<float> alphas = {0.0f, 1e-4f, 1e-3f, 0.08f, 0.124f, 0.5f, 0.999f, 1.0f};
+        std::vector<float> etas = {1.0f, 1.0001f, 1.01f, 1.5f, 1.6f, 1.8f, 2.9999f, 3.0f};
+        for (int i = 0; i < t.res.nAlpha; i += 3) alphas.push_back(RoughTransmittanceTables::alphaNode(i, t.res.nAlpha));
+        for (int i = 0; i < t.res.nEta; i += 3) etas.push_back(RoughTransmittanceTables::etaNode(i, t.res.nEta));
+        for (int i = 0; i < 12; ++i) alphas.push_back(rng.uniform());
+        for (int i = 0; i < 12; ++i) etas.push_back(1.0f + 2.0f * rng.uniform());
+        std::vector<float> mus = {0.0f, 1e-4f, 0.5f / float(t.res.nMu - 1), 0.999f, 1.0f, -0.2f, 1.3f};
+        for (int i = 0; i < t.res.nMu; i += 5) mus.push_back(RoughTransmittanceTables::muNode(i, t.res.nMu));
+        for (int i = 0; i < 24; ++i) mus.push_back(rng.uniform());
+        double maxErrT = 0, maxErrTd = 0;
+        int count = 0;
+        std::vector<float> line(size_t(t.res.nMu));
+        for (float alpha : alphas) {
+            const RoughTablesAtAlpha at(t, alpha);
+            ASSERT_EQ(at.nMu(), t.res.nMu);
+            for (float eta : etas) {
+                const float td = at.collapse(eta, line.data());
+                maxErrTd = std::max(maxErrTd, double(std::abs(td - t.internalDiffuseTransmittance(eta, alpha))));
+                // collapse is deterministic (RGB-mode lines and per-path spectral lines must agree bit for bit).
+                std::vector<float> again(line.size());
+                ASSERT_EQ(at.collapse(eta, again.data()), td);
+                ASSERT_EQ(again, line);
+                // The lazy form (η stencil on the α-collapsed tables, spectral mode) is bit-equal.
+                const RoughStencil se = at.etaStencil(eta);
+                ASSERT_EQ(at.diffuse(se), td);
+                for (float mu : mus) {
+                    const float fast = roughLineTransmittance(line.data(), roughMuStencil(mu, at.nMu()));
+                    ASSERT_EQ(at.transmittance(se, roughMuStencil(mu, at.nMu())), fast) << eta << " " << alpha << " " << mu;
+                    const float general = t.transmittance(eta, alpha, mu);
+                    maxErrT = std::max(maxErrT, double(std::abs(fast - general)));
+                    ++count;
+                }
+            }
+        }
+        // Values lie in [0, 1]; the stencil sums have ≤ 64 terms with |weights| ≲ 2.
+        EXPECT_LT(maxErrT, 1e-6) << "T, " << count << " points";
+        EXPECT_LT(maxErrTd, 1e-6) << "Td";
+        std::printf("collapsed vs general: max |ΔT| = %.3g, max |ΔTd| = %.3g over %d points\n", maxErrT, maxErrTd, count);
+    }
+}
+
+TEST(RoughPlasticTables, CatmullRomStencilWeightsSumToOne) {
+    // The interior shortcut and the ghost-folding path of roughCatmullRom both reproduce
+    // constants and linear functions (Catmull-Rom with linear extrapolation is exact for them).
+    for (int n : {2, 3, 4, 6, 48}) {
+        for (int k = 0; k <= 200; ++k) {
+            const float x = float(n - 1) * float(k) / 200.0f;
+            const RoughStencil s = roughCatmullRom(x, n);
+            double sum = 0, lin = 0;
+            for (int i = 0; i < s.count; ++i) {
+                EXPECT_GE(s.idx[i], 0);
+                EXPECT_LT(s.idx[i], n);
+                sum += s.w[i];
+                lin += s.w[i] * s.idx[i];
+            }
+            EXPECT_NEAR(sum, 1.0, 1e-6) << n << " " << x;
+            EXPECT_NEAR(lin, x, 1e-5 * n) << n << " " << x;
+        }
+    }
+}

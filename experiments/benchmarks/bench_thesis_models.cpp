@@ -68,6 +68,29 @@ void BM_Sample(benchmark::State& state) {
 }
 BENCHMARK(BM_Sample)->DenseRange(0, 3);
 
+/// What the direct/path integrator does at one shading point (integrators/path.cpp): getBSDF, then
+/// next-event estimation (eval + pdf towards a light direction), then one BSDF sample. Arg 1: 0 =
+/// RGB mode, 4 = spectral with 4 wavelengths. Label: model, mode.
+void BM_ShadingPoint(benchmark::State& state) {
+    auto inst = byIndex(state.range(0));
+    const int nSpectral = int(state.range(1));
+    state.SetLabel(std::string(kNames[state.range(0)]) + (nSpectral ? " spectral" : " rgb"));
+    Pcg32 rng(5, 6);
+    Arena arena;
+    for (auto _ : state) {
+        SampledWavelengths wl = nSpectral ? SampledWavelengths::sampleVisible(rng.uniform(), nSpectral)
+                                          : SampledWavelengths::rgb(vec3(645, 525, 445));
+        const BSDF* bsdf = inst->material->getBSDF(ShadingPoint{}, wl, arena);
+        const vec3 wo = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
+        const vec3 wl0 = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
+        benchmark::DoNotOptimize(bsdf->eval(wo, wl0, TransportMode::Radiance));
+        benchmark::DoNotOptimize(bsdf->pdf(wo, wl0, TransportMode::Radiance));
+        benchmark::DoNotOptimize(bsdf->sample(wo, rng.uniform(), vec2(rng.uniform(), rng.uniform()), TransportMode::Radiance));
+        arena.reset();
+    }
+}
+BENCHMARK(BM_ShadingPoint)->ArgsProduct({{0, 1, 3}, {0, 4}});
+
 void BM_RoughTablesBuild(benchmark::State& state) {
     const auto type = state.range(0) == 0 ? MicrofacetType::Beckmann : MicrofacetType::GGX;
     state.SetLabel(state.range(0) == 0 ? "beckmann" : "ggx");
