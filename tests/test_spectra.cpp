@@ -193,3 +193,14 @@ TEST(Spectra, MeasuredGoldIor) {
         for (int l = 360; l <= 830; l += 10) EXPECT_EQ(t->eval(float(l)), s->eval(float(l)));
     }
 }
+
+TEST(Spectra, PlanckMatchesPowForm) {
+    // planck() forms λ⁵ by multiplication; compare with the textbook c1L / (λ⁵ (e^{c2/λT} − 1)).
+    const double c1L = 2.0 * 6.62607015e-34 * sqr(299792458.0), c2 = 6.62607015e-34 * 299792458.0 / 1.380649e-23;
+    for (double T : {300.0, 1000.0, 2856.0, 4500.0, 6504.0, 20000.0})
+        for (double nm = 360.0; nm <= 830.0; nm += 7.3) {
+            const double l = nm * 1e-9;
+            const double ref = c1L / (std::pow(l, 5.0) * std::expm1(c2 / (l * T)));
+            EXPECT_NEAR(planck(nm, T), ref, 1e-13 * ref);
+        }
+}
