@@ -79,6 +79,10 @@ inline float powerHeuristic(float fPdf, float gPdf) {
 }
 
 /// Piecewise-constant 1D distribution over [0,1) (pbrt-v4 §A.4.1).
+/// The CDF inversion uses a guide table (the "indexed search" of Chen & Asau 1974, Devroye 1986
+/// §III.2.4): bucket b of [0,1) stores the CDF index range that can contain u ∈ [b/n, (b+1)/n), so
+/// the binary search runs over a few entries instead of all n. It returns exactly the interval of
+/// the plain binary search (findIntervalBinary); the samples do not change.
 class Distribution1D {
 public:
     Distribution1D() = default;
@@ -92,9 +96,16 @@ public:
     float pdf(float x) const;
     int count() const { return int(func_.size()); }
     float integral() const { return funcInt_; }
+    float func(int i) const { return func_[i]; }
+
+    /// Index o of the interval with cdf[o] <= u < cdf[o+1] (clamped to [0, n−1]): guide table.
+    int findInterval(float u) const;
+    /// The same by a binary search over the whole CDF (the general path; for tests).
+    int findIntervalBinary(float u) const;
 
 private:
     std::vector<float> func_, cdf_;
+    std::vector<int> guide_;  // n + 1 entries: guide_[b] = first CDF index > b/n
     float funcInt_ = 0;
 };
 
@@ -104,11 +115,16 @@ public:
     Distribution2D() = default;
     Distribution2D(std::span<const float> f, int nu, int nv);
     vec2 sampleContinuous(const vec2& u, float* pdf) const;
+    /// Density at p: a read of a table filled at construction with the value of pdfGeneral.
     float pdf(const vec2& p) const;
+    /// The density computed from the conditional and marginal distributions (for tests).
+    float pdfGeneral(const vec2& p) const;
 
 private:
     std::vector<Distribution1D> conditional_;
     Distribution1D marginal_;
+    std::vector<float> pdf_;  // nu × nv, row-major in v
+    int nu_ = 0, nv_ = 0;
 };
 
 }  // namespace iris

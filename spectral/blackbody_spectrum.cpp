@@ -21,7 +21,8 @@ double planck(double lambdaNm, double T) {
     if (lambdaNm <= 0.0 || T <= 0.0) return 0.0;
     const double l = lambdaNm * 1e-9;  // m
     // Planck's law: B(λ, T) = c1L / (λ⁵ (exp(c2 / (λT)) − 1)).
-    return kC1L / (std::pow(l, 5.0) * std::expm1(kC2 / (l * T)));
+    const double l2 = l * l;  // λ⁵ by multiplication (pow(l, 5.0) costs a general pow)
+    return kC1L / (l2 * l2 * l * std::expm1(kC2 / (l * T)));
 }
 
 BlackbodySpectrum::BlackbodySpectrum(float temperatureK, float scale)

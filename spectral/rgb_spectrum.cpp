@@ -53,7 +53,7 @@ RGBSpectrum::RGBSpectrum(const vec3& rgb, SpectrumKind kind) : Spectrum(kind), r
 }
 
 float RGBSpectrum::eval(float lambda) const {
-    float v = scale_ * (grey_ ? level_ : poly_(lambda));
+    float v = shapeValue(lambda);
     if (d65Scale_ != 0.0f) v *= d65Scale_ * cie::d65(lambda);
     return v;
 }

@@ -20,6 +20,14 @@ public:
     RGBSpectrum(const vec3& rgb, SpectrumKind kind);
 
     float eval(float lambda) const override;
+    /// eval without the Illuminant D65 factor: eval(λ) = shapeValue(λ) · d65Factor() · D65(λ)
+    /// (d65Factor() is 0 for other kinds, whose eval is shapeValue). For callers that sum several
+    /// illuminant spectra and apply the D65 factor once (it is common to all of them).
+    float shapeValue(float lambda) const { return scale_ * (grey_ ? level_ : poly_(lambda)); }
+    float d65Factor() const { return d65Scale_; }
+    float scale() const { return scale_; }
+    /// Grey level of the normalised shape (used when isGrey()).
+    float greyLevel() const { return level_; }
     float maxValue() const override { return max_; }
     SampledSpectrum sample(const SampledWavelengths& wl) const override;
     vec3 rgbValue() const override { return rgb_; }

@@ -13,45 +13,81 @@ constexpr int kMaxWavelengths = 32;
 
 class SampledSpectrum {
 public:
+    /// Element-wise arithmetic runs over the first n rounded up to a multiple of kLanes, in
+    /// fixed-width groups that the compiler turns into SIMD instructions. The padding lanes
+    /// (n..padded) are initialised by the constructors and never read by the queries below, so
+    /// lanes 0..n−1 get exactly the values of a plain loop to n.
+    static constexpr int kLanes = 4;
+    static_assert(kMaxWavelengths % kLanes == 0);
+
     SampledSpectrum() = default;
     explicit SampledSpectrum(int n, float c = 0.0f) : n_(n) {
         assert(n >= 0 && n <= kMaxWavelengths);
-        for (int i = 0; i < n_; ++i) v_[i] = c;
+        for (int i = 0; i < padded(); ++i) v_[i] = c;
     }
 
     int size() const { return n_; }
     float operator[](int i) const { return v_[i]; }
     float& operator[](int i) { return v_[i]; }
 
-#define IRIS_SPECTRUM_OP(OP)                                                          \
-    SampledSpectrum& operator OP##=(const SampledSpectrum& o) {                       \
-        assert(o.n_ == n_);                                                           \
-        for (int i = 0; i < n_; ++i) v_[i] OP## = o.v_[i];                            \
-        return *this;                                                                 \
-    }                                                                                 \
-    SampledSpectrum& operator OP##=(float s) {                                        \
-        for (int i = 0; i < n_; ++i) v_[i] OP## = s;                                  \
-        return *this;                                                                 \
-    }                                                                                 \
-    friend SampledSpectrum operator OP(SampledSpectrum a, const SampledSpectrum& b) { \
-        return a OP## = b;                                                            \
-    }                                                                                 \
-    friend SampledSpectrum operator OP(SampledSpectrum a, float s) { return a OP## = s; }
+#define IRIS_SPECTRUM_OP(OP)                                                                         \
+    SampledSpectrum& operator OP##=(const SampledSpectrum& o) {                                      \
+        assert(o.n_ == n_);                                                                          \
+        for (int i = 0; i < padded(); i += kLanes)                                                   \
+            for (int k = 0; k < kLanes; ++k) v_[i + k] OP## = o.v_[i + k];                           \
+        return *this;                                                                                \
+    }                                                                                                \
+    SampledSpectrum& operator OP##=(float s) {                                                       \
+        for (int i = 0; i < padded(); i += kLanes)                                                   \
+            for (int k = 0; k < kLanes; ++k) v_[i + k] OP## = s;                                     \
+        return *this;                                                                                \
+    }                                                                                                \
+    friend SampledSpectrum operator OP(const SampledSpectrum& a, const SampledSpectrum& b) {         \
+        assert(a.n_ == b.n_);                                                                        \
+        SampledSpectrum r;                                                                           \
+        r.n_ = a.n_;                                                                                 \
+        for (int i = 0; i < a.padded(); i += kLanes)                                                 \
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = a.v_[i + k] OP b.v_[i + k];               \
+        return r;                                                                                    \
+    }                                                                                                \
+    friend SampledSpectrum operator OP(const SampledSpectrum& a, float s) {                          \
+        SampledSpectrum r;                                                                           \
+        r.n_ = a.n_;                                                                                 \
+        for (int i = 0; i < a.padded(); i += kLanes)                                                 \
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = a.v_[i + k] OP s;                         \
+        return r;                                                                                    \
+    }
     IRIS_SPECTRUM_OP(+)
     IRIS_SPECTRUM_OP(-)
     IRIS_SPECTRUM_OP(*)
     IRIS_SPECTRUM_OP(/)
 #undef IRIS_SPECTRUM_OP
-    friend SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
-    friend SampledSpectrum operator+(float s, SampledSpectrum a) { return a += s; }
+    friend SampledSpectrum operator*(float s, const SampledSpectrum& a) {
+        SampledSpectrum r;
+        r.n_ = a.n_;
+        for (int i = 0; i < a.padded(); i += kLanes)
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s * a.v_[i + k];
+        return r;
+    }
+    friend SampledSpectrum operator+(float s, const SampledSpectrum& a) {
+        SampledSpectrum r;
+        r.n_ = a.n_;
+        for (int i = 0; i < a.padded(); i += kLanes)
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s + a.v_[i + k];
+        return r;
+    }
     friend SampledSpectrum operator-(float s, const SampledSpectrum& a) {
-        SampledSpectrum r(a.n_);
-        for (int i = 0; i < a.n_; ++i) r.v_[i] = s - a.v_[i];
+        SampledSpectrum r;
+        r.n_ = a.n_;
+        for (int i = 0; i < a.padded(); i += kLanes)
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s - a.v_[i + k];
         return r;
     }
     SampledSpectrum operator-() const {
-        SampledSpectrum r(n_);
-        for (int i = 0; i < n_; ++i) r.v_[i] = -v_[i];
+        SampledSpectrum r;
+        r.n_ = n_;
+        for (int i = 0; i < padded(); i += kLanes)
+            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = -v_[i + k];
         return r;
     }
 
@@ -106,8 +142,9 @@ public:
     }
 
 private:
+    int padded() const { return (n_ + kLanes - 1) & ~(kLanes - 1); }
     int n_ = 0;
-    float v_[kMaxWavelengths];
+    alignas(16) float v_[kMaxWavelengths];
 };
 
 }  // namespace iris

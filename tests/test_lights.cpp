@@ -9,6 +9,7 @@
 #include "core/rng.h"
 #include "core/scene.h"
 #include "render_test_scenes.h"
+#include "spectral/spectrum_factory.h"
 
 using namespace iris;
 using namespace iris::testing;
@@ -183,5 +184,53 @@ TEST(Lights, EnvironmentMapSamplingIsConsistent) {
     EXPECT_LE(mismatches, n / 1000);  // observed: ~2.6e-4 of the samples (float direction round trip)
     const double mean = s / n, se = std::sqrt((s2 / n - mean * mean) / n);
     EXPECT_NEAR(mean, ref, 5 * se + 1e-6 * ref);
+    std::remove(path.c_str());
+}
+
+TEST(Lights, EnvironmentMapSpectralLookupMatchesCornerSpectra) {
+    // Spectral mode: a texel's spectrum is m · Σ_corners w_c · S_c(λ) with S_c the Illuminant
+    // RGBSpectrum of grid corner c (envmap_light.cpp). The lookup sums the corners' shapes and
+    // applies the common D65 factor once; compare with the sum of the corners' own eval().
+    const int w = 8, h = 4;
+    Image img(w, h, 3);
+    const vec3 colours[4] = {vec3(0.75f, 0.25f, 0.125f), vec3(0.5f, 0.5f, 0.5f), vec3(0.0625f, 0.8125f, 2.5f),
+                             vec3(0.3125f, 0.0f, 0.0f)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) img.at(x, y, c) = colours[(x + y) % 4][c] * float(1 + x);
+    const std::string path = ::testing::TempDir() + "iris_env_spectral_test.exr";
+    writeEXR(path, img);
+    Properties p("emitter", "envmap", SourceLocation{"<test>", 0});
+    p.set("filename", std::string(path), SourceLocation{});
+    const LightPtr env = LightRegistry::instance().create(p);
+    const Image stored = readImage(path);
+    constexpr int K = 17;
+    for (int n : {1, 4, 7, 32}) {
+        const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, n);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                // Texel centre direction (Mitsuba convention, identity to_world).
+                const float theta = kPi * (y + 0.5f) / h, phi = 2 * kPi * (x + 0.5f) / w;
+                const vec3 dir(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+                const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), dir, wl);
+                const vec3 c(stored.at(x, y, 0), stored.at(x, y, 1), stored.at(x, y, 2));
+                const float m = std::max({c.x, c.y, c.z});
+                const vec3 g = c / m * float(K - 1);
+                const int x0 = std::min(int(g.x), K - 2), y0 = std::min(int(g.y), K - 2), z0 = std::min(int(g.z), K - 2);
+                const vec3 f = g - vec3(x0, y0, z0);
+                for (int i = 0; i < n; ++i) {
+                    double ref = 0;
+                    for (int corner = 0; corner < 8; ++corner) {
+                        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
+                        const float wc = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
+                        if (wc <= 0) continue;
+                        const SpectrumPtr s = makeRGBSpectrum(vec3(x0 + dx, y0 + dy, z0 + dz) / float(K - 1), SpectrumKind::Illuminant);
+                        ref += double(wc) * s->eval(wl.lambda(i));
+                    }
+                    ref *= m;
+                    EXPECT_NEAR(L[i], ref, 2e-6 * ref + 1e-7) << "texel " << x << "," << y << " lambda " << wl.lambda(i);
+                }
+            }
+    }
     std::remove(path.c_str());
 }

@@ -193,3 +193,57 @@ TEST(Spectra, MeasuredGoldIor) {
         for (int l = 360; l <= 830; l += 10) EXPECT_EQ(t->eval(float(l)), s->eval(float(l)));
     }
 }
+
+TEST(Spectra, PlanckMatchesPowForm) {
+    // planck() forms λ⁵ by multiplication; compare with the textbook c1L / (λ⁵ (e^{c2/λT} − 1)).
+    const double c1L = 2.0 * 6.62607015e-34 * sqr(299792458.0), c2 = 6.62607015e-34 * 299792458.0 / 1.380649e-23;
+    for (double T : {300.0, 1000.0, 2856.0, 4500.0, 6504.0, 20000.0})
+        for (double nm = 360.0; nm <= 830.0; nm += 7.3) {
+            const double l = nm * 1e-9;
+            const double ref = c1L / (std::pow(l, 5.0) * std::expm1(c2 / (l * T)));
+            EXPECT_NEAR(planck(nm, T), ref, 1e-13 * ref);
+        }
+}
+
+TEST(Spectra, SampledSpectrumPaddedArithmeticMatchesScalarLoop) {
+    // SampledSpectrum computes in 4-wide groups over the padded length; every lane below n must
+    // equal the plain per-element operation exactly, for every n.
+    uint32_t state = 12345u;
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) * 0x1p-24f * 4.0f - 1.0f;
+    };
+    for (int n = 1; n <= kMaxWavelengths; ++n) {
+        SampledSpectrum a(n), b(n);
+        for (int i = 0; i < n; ++i) {
+            a[i] = next();
+            b[i] = next();
+            if (i % 5 == 3) b[i] = 0.0f;
+        }
+        const float s = next();
+        const SampledSpectrum r[] = {a + b, a - b, a * b, a / b, a + s, a - s, a * s, a / s, s * a, s + a, s - a, -a};
+        for (int i = 0; i < n; ++i) {
+            const float e[] = {a[i] + b[i], a[i] - b[i], a[i] * b[i], a[i] / b[i], a[i] + s, a[i] - s,
+                               a[i] * s,    a[i] / s,    s * a[i],    s + a[i],    s - a[i], -a[i]};
+            for (int k = 0; k < 12; ++k) {
+                ASSERT_EQ(r[k].size(), n);
+                if (std::isnan(e[k])) EXPECT_TRUE(std::isnan(r[k][i]));
+                else EXPECT_EQ(r[k][i], e[k]) << "op " << k << " n " << n << " i " << i;
+            }
+        }
+        SampledSpectrum c = a;
+        c *= b;
+        c += s;
+        c -= a;
+        c /= 3.0f;
+        for (int i = 0; i < n; ++i) EXPECT_EQ(c[i], ((a[i] * b[i] + s) - a[i]) / 3.0f);
+        // Queries look at the first n lanes only (padding lanes hold 0/0 etc. here).
+        const SampledSpectrum q = a / b;
+        EXPECT_EQ(q.hasNonFinite(), [&] {
+            for (int i = 0; i < n; ++i)
+                if (!std::isfinite(a[i] / b[i])) return true;
+            return false;
+        }());
+        EXPECT_TRUE((a - a).isBlack());
+    }
+}

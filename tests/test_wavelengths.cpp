@@ -2,6 +2,8 @@
 // sampler, and hero rotations are stratified.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/rng.h"
@@ -80,4 +82,24 @@ TEST(Wavelengths, RgbModeUsesFixedChannels) {
     EXPECT_EQ(wl.lambda(0), 645.0f);
     EXPECT_EQ(wl.lambda(2), 445.0f);
     EXPECT_EQ(wl.pdf(1), 1.0f);
+}
+
+TEST(Wavelengths, FastFormsMatchTheTanhDefinition) {
+    // visibleWavelengthPdf uses 4e^{-2|x|}/(1+e^{-2|x|})² and the sampler ½ln((1+t)/(1−t)) in
+    // double; compare with the defining forms 1/(norm·cosh²x) and atanh (pbrt-v4 §4.6.5).
+    const double a = 0.0072, c = 538.0;
+    const double norm = (std::tanh(a * (kLambdaMax - c)) - std::tanh(a * (kLambdaMin - c))) / a;
+    for (double l = kLambdaMin; l <= kLambdaMax; l += 0.37) {
+        const double ref = 1.0 / (norm * sqr(std::cosh(a * (float(l) - c))));
+        EXPECT_NEAR(visibleWavelengthPdf(float(l)), ref, 1e-6 * ref);
+    }
+    Pcg32 rng(17, 2);
+    for (int i = 0; i < 100000; ++i) {
+        const float u = i < 3 ? float(i) * 0.5f : rng.uniform();
+        const double t = std::tanh(a * (kLambdaMin - c)) + double(u) * a * norm;
+        const double ref = std::clamp(c + std::atanh(t) / a, double(kLambdaMin), double(kLambdaMax));
+        // The sampler forms t in float (as before): |dλ/dt| = 1/(a(1−t²)) ≤ 2.4e3 nm times the
+        // rounding of t near 1 (1.2e-7) is 2.9e-4 nm, plus half an ulp of λ (3e-5 nm).
+        EXPECT_NEAR(sampleVisibleWavelength(u), ref, 4e-4) << u;
+    }
 }

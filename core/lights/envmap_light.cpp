@@ -14,7 +14,8 @@
 #include "core/lights/light.h"
 #include "core/registry.h"
 #include "core/sampling.h"
-#include "spectral/spectrum_factory.h"
+#include "spectral/cie.h"
+#include "spectral/rgb_spectrum.h"
 
 namespace iris {
 namespace {
@@ -102,13 +103,26 @@ private:
         const vec3 g = c / m * float(kGrid - 1);
         const int x0 = std::min(int(g.x), kGrid - 2), y0 = std::min(int(g.y), kGrid - 2), z0 = std::min(int(g.z), kGrid - 2);
         const vec3 f = g - vec3(x0, y0, z0);
+        // Every corner is an Illuminant RGBSpectrum, eval = shape(λ) · k · D65(λ) with the same k,
+        // so the trilinear sum of the shapes is taken first and k · D65(λ) applied once (linearity;
+        // the result differs from summing the corners' eval only by float rounding). The corners
+        // are called directly (RGBSpectrum is final), not through the virtual Spectrum::eval.
+        const int n = wl.size();
+        float acc[kMaxWavelengths];
+        for (int i = 0; i < n; ++i) acc[i] = 0.0f;
         for (int corner = 0; corner < 8; ++corner) {
             const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
             const float w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
             if (w <= 0) continue;
-            const Spectrum* sp = grid_[gridIndex(x0 + dx, y0 + dy, z0 + dz)].get();
-            for (int i = 0; i < wl.size(); ++i) s[i] += w * sp->eval(wl.lambda(i));
+            const RGBSpectrum& sp = *grid_[gridIndex(x0 + dx, y0 + dy, z0 + dz)];
+            if (sp.isGrey()) {
+                const float v = sp.shapeValue(kLambdaMin);
+                for (int i = 0; i < n; ++i) acc[i] += w * v;
+            } else {
+                for (int i = 0; i < n; ++i) acc[i] += w * sp.shapeValue(wl.lambda(i));
+            }
         }
+        for (int i = 0; i < n; ++i) s[i] = acc[i] * (d65Factor_ * cie::d65(wl.lambda(i)));
         return s * m;
     }
 
@@ -129,8 +143,11 @@ private:
         for (int z = 0; z < kGrid; ++z)
             for (int y = 0; y < kGrid; ++y)
                 for (int x = 0; x < kGrid; ++x)
-                    if (needed[gridIndex(x, y, z)])
-                        grid_[gridIndex(x, y, z)] = makeRGBSpectrum(vec3(x, y, z) / float(kGrid - 1), SpectrumKind::Illuminant);
+                    if (needed[gridIndex(x, y, z)]) {
+                        // The spectrum makeRGBSpectrum(rgb, Illuminant) returns, held by its type.
+                        grid_[gridIndex(x, y, z)] = std::make_unique<RGBSpectrum>(vec3(x, y, z) / float(kGrid - 1), SpectrumKind::Illuminant);
+                        d65Factor_ = grid_[gridIndex(x, y, z)]->d65Factor();
+                    }
     }
 
     Image img_;  // size only (pixels released after construction)
@@ -141,7 +158,8 @@ private:
     std::string name_;
     Distribution2D dist_;
     mutable std::once_flag gridOnce_;
-    mutable std::vector<SpectrumPtr> grid_;
+    mutable std::vector<std::unique_ptr<const RGBSpectrum>> grid_;
+    mutable float d65Factor_ = 0;  // the corners' common D65 normalisation (RGBSpectrum::d65Factor)
 };
 
 std::shared_ptr<Light> createEnvMap(const Properties& p) {
