@@ -14,6 +14,9 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 
@@ -298,6 +301,42 @@ TEST_F(ImageIO, ExrReadByOpenExrEqualsOpenImageIO) {
     img.channelNames = {"R", "G", "B", "depth", "var"};
     writeEXR(file("w.exr"), img);
     expectSameImage(readImage(file("w.exr")), readImageWithOpenImageIO(file("w.exr")), "writeEXR");
+}
+
+TEST_F(ImageIO, MultiPartExrReadsTheFirstPartLikeOpenImageIO) {
+    // Two parts with different channels and sizes: both paths read part 0 only.
+    std::vector<Imf::Header> headers;
+    for (int part = 0; part < 2; ++part) {
+        // Parts share the display window; their data windows differ.
+        Imf::Header h(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(4, 3)),
+                      Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(3 + part, 2 + part)));
+        h.setName(part == 0 ? "beauty" : "aov");
+        h.setType(Imf::SCANLINEIMAGE);
+        for (const char* c : part == 0 ? std::vector<const char*>{"B", "G", "R"} : std::vector<const char*>{"Z", "N.x"})
+            h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        headers.push_back(h);
+    }
+    const std::string p = file("multi.exr");
+    {
+        Imf::MultiPartOutputFile out(p.c_str(), headers.data(), int(headers.size()));
+        for (int part = 0; part < 2; ++part) {
+            const int w = 4 + part, h = 3 + part, n = part == 0 ? 3 : 2;
+            std::vector<float> px(size_t(w * h * n));
+            for (size_t i = 0; i < px.size(); ++i) px[i] = float(i) * 0.5f - float(part) * 7.0f;
+            Imf::FrameBuffer fb;
+            int c = 0;
+            for (auto it = headers[size_t(part)].channels().begin(); it != headers[size_t(part)].channels().end(); ++it, ++c)
+                fb.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c), sizeof(float) * size_t(n),
+                                                sizeof(float) * size_t(n * w)));
+            Imf::OutputPart o(out, part);
+            o.setFrameBuffer(fb);
+            o.writePixels(h);
+        }
+    }
+    const Image direct = readImage(p);
+    EXPECT_EQ(direct.width, 4);
+    EXPECT_EQ(direct.channels, 3);
+    expectSameImage(direct, readImageWithOpenImageIO(p), p);
 }
 
 TEST_F(ImageIO, UintExrChannelsGoThroughOpenImageIO) {
