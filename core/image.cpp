@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <system_error>
 
@@ -23,6 +22,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfTestFile.h>
 
 #include "core/error.h"
 #include "core/io/oiio_loader.h"
@@ -160,13 +160,12 @@ void checkSize(const std::string& path, long long w, long long h, long long chan
     if (channels > 1024) fail(path, ": absurd channel count ", channels);
 }
 
-/// True if the file starts with the OpenEXR magic number 20000630 (little endian 76 2f 31 01;
-/// OpenEXR file layout, openexr.com).
-bool hasExrMagic(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    unsigned char magic[4] = {0, 0, 0, 0};
-    f.read(reinterpret_cast<char*>(magic), 4);
-    return f.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;
+/// True if the file is an OpenEXR file without deep data: OpenEXR's test of the magic number
+/// 20000630 and the version field (whose "non-image" bit marks deep parts; OpenEXR file layout,
+/// openexr.com). Deep files are left to OpenImageIO, as before.
+bool isFlatExr(const std::string& path) {
+    bool tiled = false, deep = false;
+    return Imf::isOpenExrFile(path.c_str(), tiled, deep) && !deep;
 }
 
 /// OpenImageIO's order of EXR channels (observed with iinfo on OpenImageIO 2.4, which reorders
@@ -282,7 +281,7 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
 
 Image readImage(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
-    if (hasExrMagic(path)) {
+    if (isFlatExr(path)) {
         Image img;
         if (readExrDirect(path, img)) {
             if (info) *info = ImageFileInfo{};  // HALF/FLOAT: not an integer format
