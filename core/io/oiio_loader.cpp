@@ -25,9 +25,12 @@ Fn symbol(void* lib, const char* name, std::string& missing) {
 
 /// Load and check the module at `path`; returns nullptr and sets `reason` on failure.
 std::unique_ptr<OiioModule> load(const std::string& path, std::string& reason) {
-    // RTLD_LOCAL: OpenImageIO's symbols stay out of the global namespace; the module is never
-    // unloaded (OpenImageIO keeps threads and static state).
-    void* lib = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // RTLD_LAZY: function symbols of OpenImageIO's ~250 libraries are bound on first call instead
+    // of all at load (7 % fewer instructions for a one-sphere render with PNG, callgrind); the
+    // module's own entry points are checked with dlsym below. RTLD_LOCAL: OpenImageIO's symbols
+    // stay out of the global namespace. The module is never unloaded (OpenImageIO keeps threads
+    // and static state).
+    void* lib = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!lib) {
         const char* e = ::dlerror();
         reason = e ? e : "dlopen failed";
