@@ -10,7 +10,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -155,7 +154,8 @@ void checkReadable(const std::string& path) {
 
 void checkSize(const std::string& path, long long w, long long h, long long channels) {
     if (w <= 0 || h <= 0 || channels <= 0) fail(path, ": unsupported image size ", w, "x", h, "x", channels);
-    if (w * h > (long long)kMaxPixels)
+    // Each factor first, so that the product cannot overflow.
+    if (w > (long long)kMaxPixels || h > (long long)kMaxPixels || w * h > (long long)kMaxPixels)
         fail(path, ": image of ", w, "x", h, " pixels exceeds the limit of 2^28 pixels");
     if (channels > 1024) fail(path, ": absurd channel count ", channels);
 }
