@@ -1,5 +1,7 @@
 // Float images and their files: OpenEXR output (with string metadata), 8-bit LDR output and reading
-// of anything OpenImageIO understands. Library headers stay in image.cpp.
+// of anything OpenImageIO understands. EXR goes through OpenEXR; LDR output and other formats go
+// through the OpenImageIO module, loaded on first use (core/io/oiio_loader.h). Library headers
+// stay in image.cpp.
 #pragma once
 
 #include <cstddef>
@@ -40,13 +42,28 @@ std::string metadataValue(const ImageMetadata& meta, const std::string& key, con
 /// attributes; atomically: write "<path>.tmp-<pid>" then rename over path. Throws iris::Error naming the file.
 void writeEXR(const std::string& path, const Image& img, const ImageMetadata& meta = {});
 
-/// Write an 8-bit LDR image (PNG/JPEG by extension) through OpenImageIO; input values are display
-/// code values in [0,1] (clamped, rounded); atomic as above.
+/// Write an 8-bit LDR image (PNG/JPEG by extension) through OpenImageIO (the module); input values
+/// are display code values in [0,1] (clamped, rounded); atomic as above. Throws iris::Error naming
+/// the file, also when the module cannot be loaded.
 void writeLDR(const std::string& path, const Image& img);
+
+/// What a reader learned about the stored pixel format (for sRGB decoding of textures).
+struct ImageFileInfo {
+    bool integerFormat = false;  // stored as 8- or 16-bit unsigned integers
+    std::string colorSpace;      // OpenImageIO's "oiio:ColorSpace" attribute ("" if none / EXR)
+};
 
 /// Read any image OpenImageIO reads (EXR, HDR, PNG, ...) as linear float as stored (no colour conversion);
 /// throws iris::Error "path: <reason>" for missing/unreadable/corrupt/truncated files, absurd sizes (refuse > 2^28 pixels).
-Image readImage(const std::string& path);
+/// Files with the OpenEXR magic number are read with OpenEXR (first part, data window, channels in
+/// OpenImageIO's order: by layer, then R, G, B, A, ..., then the rest); other files, and the
+/// EXR variants OpenImageIO converts differently (deep, subsampled, UINT channels), go through the
+/// OpenImageIO module. `info`, if given, receives the stored pixel format.
+Image readImage(const std::string& path, ImageFileInfo* info = nullptr);
+
+/// The general path of readImage for every file, EXR included: always through the OpenImageIO
+/// module (tests compare the OpenEXR path against it).
+Image readImageWithOpenImageIO(const std::string& path, ImageFileInfo* info = nullptr);
 
 /// Read the string attributes of an EXR header (in header order, which OpenEXR sorts by name).
 ImageMetadata readEXRMetadata(const std::string& path);

@@ -1,15 +1,28 @@
 // Image I/O: EXR values and metadata survive a round trip, writes are atomic (no temp file left),
 // LDR output is clamped and rounded, and bad files are reported as iris::Error naming the path.
+// EXR files read with OpenEXR equal what OpenImageIO (the general path, the module) reads.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <bit>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
+
 #include "core/error.h"
 #include "core/image.h"
+#include "core/io/oiio_loader.h"
 #include "core/rng.h"
 
 using namespace iris;
@@ -198,4 +211,160 @@ TEST_F(ImageIO, JpegDropsAlpha) {
     const Image back = readImage(p);
     EXPECT_EQ(back.channels, 3);
     EXPECT_NEAR(back.at(1, 1, 0), 128.0f / 255.0f, 3.0f / 255.0f);  // lossy
+}
+
+// ---- EXR through OpenEXR vs the general path (OpenImageIO module) --------------------------
+
+namespace {
+
+/// Write an EXR directly with OpenEXR: the given channel names and pixel type, a data window
+/// offset from the origin, optionally tiled; values are a deterministic pattern (negative, large
+/// and fractional values; exactly representable in HALF where the type is HALF).
+void writeExrWith(const std::string& path, const std::vector<std::string>& names, Imf::PixelType type,
+                  const Imath::Box2i& dw, bool tiled) {
+    Imf::Header header(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(dw.max.x + 2, dw.max.y + 3)), dw);
+    header.compression() = Imf::PIZ_COMPRESSION;
+    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    const size_t n = size_t(w) * size_t(h);
+    std::vector<std::vector<float>> f(names.size(), std::vector<float>(n));
+    std::vector<std::vector<half>> hv(names.size(), std::vector<half>(n));
+    std::vector<std::vector<uint32_t>> u(names.size(), std::vector<uint32_t>(n));
+    Imf::FrameBuffer fb;
+    for (size_t c = 0; c < names.size(); ++c) {
+        header.channels().insert(names[c], Imf::Channel(type));
+        for (size_t i = 0; i < n; ++i) {
+            const float v = (float(int((i * 7 + c * 13) % 29)) - 9.0f) * 0.375f + float(c) * 100.0f;
+            f[c][i] = v;
+            hv[c][i] = half(v);
+            u[c][i] = uint32_t(i * 1000003u + c);
+        }
+        char* base = type == Imf::FLOAT  ? reinterpret_cast<char*>(f[c].data())
+                     : type == Imf::HALF ? reinterpret_cast<char*>(hv[c].data())
+                                         : reinterpret_cast<char*>(u[c].data());
+        const size_t xs = type == Imf::HALF ? sizeof(half) : 4;
+        fb.insert(names[c], Imf::Slice(type, base - (dw.min.x + dw.min.y * w) * xs, xs, xs * size_t(w)));
+    }
+    if (tiled) {
+        header.setTileDescription(Imf::TileDescription(4, 4, Imf::ONE_LEVEL));
+        Imf::TiledOutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writeTiles(0, file.numXTiles() - 1, 0, file.numYTiles() - 1);
+    } else {
+        Imf::OutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(h);
+    }
+}
+
+void expectSameImage(const Image& a, const Image& b, const std::string& what) {
+    ASSERT_EQ(a.width, b.width) << what;
+    ASSERT_EQ(a.height, b.height) << what;
+    ASSERT_EQ(a.channels, b.channels) << what;
+    EXPECT_EQ(a.channelNames, b.channelNames) << what;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(std::bit_cast<uint32_t>(a.pixels[i]), std::bit_cast<uint32_t>(b.pixels[i])) << what << " value " << i;
+}
+
+}  // namespace
+
+TEST_F(ImageIO, ExrReadByOpenExrEqualsOpenImageIO) {
+    // Channel sets exercising OpenImageIO's reordering (layers; R, G, B, A, Y, Z, ... first).
+    const std::vector<std::vector<std::string>> channelSets = {
+        {"R", "G", "B"},
+        {"R", "G", "B", "A"},
+        {"Y"},
+        {"depth", "R", "var", "A", "B"},
+        {"b.R", "a.G", "a.R", "R", "G", "B", "a.B", "Z", "A"},
+        {"diffuse.B", "diffuse.G", "diffuse.R", "alpha", "x"},
+        {"Y", "RY", "BY"},
+        {"red", "green", "blue", "alpha"},
+        {"A", "a", "Z", "ZBack", "DEPTH", "imag", "real", "AR", "RA"},
+        {"x", "W", "a.x", "a.W", "a.b.R", "ab.R"},
+    };
+    int k = 0;
+    for (const auto& names : channelSets)
+        for (const Imf::PixelType type : {Imf::FLOAT, Imf::HALF})
+            for (const bool tiled : {false, true}) {
+                const std::string p = file(strCat("set", k++, ".exr"));
+                writeExrWith(p, names, type, Imath::Box2i(Imath::V2i(3, -2), Imath::V2i(13, 6)), tiled);
+                ImageFileInfo info;
+                info.integerFormat = true;
+                const Image direct = readImage(p, &info);
+                EXPECT_FALSE(info.integerFormat);
+                EXPECT_EQ(direct.width, 11);
+                EXPECT_EQ(direct.height, 9);
+                expectSameImage(direct, readImageWithOpenImageIO(p), p);
+            }
+    // What the renderer writes (FLOAT, ZIP, R G B + extra channels).
+    Image img = randomImage(7, 5, 5, 3);
+    img.channelNames = {"R", "G", "B", "depth", "var"};
+    writeEXR(file("w.exr"), img);
+    expectSameImage(readImage(file("w.exr")), readImageWithOpenImageIO(file("w.exr")), "writeEXR");
+}
+
+TEST_F(ImageIO, MultiPartExrReadsTheFirstPartLikeOpenImageIO) {
+    // Two parts with different channels and sizes: both paths read part 0 only.
+    std::vector<Imf::Header> headers;
+    for (int part = 0; part < 2; ++part) {
+        // Parts share the display window; their data windows differ.
+        Imf::Header h(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(4, 3)),
+                      Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(3 + part, 2 + part)));
+        h.setName(part == 0 ? "beauty" : "aov");
+        h.setType(Imf::SCANLINEIMAGE);
+        for (const char* c : part == 0 ? std::vector<const char*>{"B", "G", "R"} : std::vector<const char*>{"Z", "N.x"})
+            h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        headers.push_back(h);
+    }
+    const std::string p = file("multi.exr");
+    {
+        Imf::MultiPartOutputFile out(p.c_str(), headers.data(), int(headers.size()));
+        for (int part = 0; part < 2; ++part) {
+            const int w = 4 + part, h = 3 + part, n = part == 0 ? 3 : 2;
+            std::vector<float> px(size_t(w * h * n));
+            for (size_t i = 0; i < px.size(); ++i) px[i] = float(i) * 0.5f - float(part) * 7.0f;
+            Imf::FrameBuffer fb;
+            int c = 0;
+            for (auto it = headers[size_t(part)].channels().begin(); it != headers[size_t(part)].channels().end(); ++it, ++c)
+                fb.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c), sizeof(float) * size_t(n),
+                                                sizeof(float) * size_t(n * w)));
+            Imf::OutputPart o(out, part);
+            o.setFrameBuffer(fb);
+            o.writePixels(h);
+        }
+    }
+    const Image direct = readImage(p);
+    EXPECT_EQ(direct.width, 4);
+    EXPECT_EQ(direct.channels, 3);
+    expectSameImage(direct, readImageWithOpenImageIO(p), p);
+}
+
+TEST_F(ImageIO, UintExrChannelsGoThroughOpenImageIO) {
+    // OpenImageIO normalises UINT channels; such files keep being read by it, unchanged.
+    const std::string p = file("uint.exr");
+    writeExrWith(p, {"id", "R"}, Imf::UINT, Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(4, 3)), false);
+    expectSameImage(readImage(p), readImageWithOpenImageIO(p), p);
+}
+
+TEST_F(ImageIO, PngAndJpegGoThroughTheModule) {
+    Image img(5, 3, 3);
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = float(i % 11) / 10.0f;
+    const std::string p = file("m.png");
+    writeLDR(p, img);
+    ImageFileInfo info;
+    const Image back = readImage(p, &info);
+    EXPECT_TRUE(info.integerFormat);
+    ASSERT_EQ(back.channels, 3);
+    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"R", "G", "B"}));
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        EXPECT_NEAR(back.pixels[i], float(std::lround(img.pixels[i] * 255.0f)) / 255.0f, 1e-6f) << i;
+    expectSameImage(back, readImageWithOpenImageIO(p), p);
+    // The module that served this is the one beside the test binary (or $IRIS_OIIO_MODULE).
+    EXPECT_EQ(oiioModule(p, "test").path, oiioModulePath());
+    EXPECT_TRUE(fs::exists(oiioModulePath())) << oiioModulePath();
+    // Four channels keep their names (values: OpenImageIO's alpha handling, as before the module).
+    writeLDR(file("a.png"), Image(2, 2, 4));
+    EXPECT_EQ(readImage(file("a.png")).channelNames, (std::vector<std::string>{"R", "G", "B", "A"}));
+    writeLDR(file("a.jpg"), Image(2, 2, 4));
+    EXPECT_EQ(readImage(file("a.jpg")).channels, 3);
 }

@@ -3,8 +3,6 @@
 #include <map>
 #include <mutex>
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/loader/xml_values.h"
 
 namespace iris {
@@ -31,16 +29,12 @@ std::shared_ptr<const Bitmap> Bitmap::load(const std::string& path, bool raw) {
 }
 
 std::shared_ptr<const Bitmap> Bitmap::loadUncached(const std::string& path, bool raw) {
-    Image img = readImage(path);
+    ImageFileInfo info;
+    Image img = readImage(path, &info);
     if (!raw) {
-        bool integer = false, linearTag = false;
-        if (auto in = OIIO::ImageInput::open(path)) {
-            const OIIO::ImageSpec& spec = in->spec();
-            integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
-            const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
-            linearTag = cs == "Linear" || cs == "linear" || cs == "lin_srgb" || cs == "scene_linear";
-            in->close();
-        }
+        const std::string& cs = info.colorSpace;
+        const bool integer = info.integerFormat;
+        const bool linearTag = cs == "Linear" || cs == "linear" || cs == "lin_srgb" || cs == "scene_linear";
         if (integer && !linearTag) {
             // Decode colour channels, never alpha (channel 1 of grey+alpha, channel 3 of RGBA).
             const int colour = img.channels == 2 ? 1 : std::min(img.channels, 3);

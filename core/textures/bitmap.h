@@ -27,7 +27,7 @@ public:
 
     explicit Bitmap(Image img);
 
-    /// Read through OpenImageIO. Unless `raw`, integer (8/16-bit) images not tagged as linear are
+    /// Read with readImage (core/image.h: OpenEXR, or the OpenImageIO module). Unless `raw`, integer (8/16-bit) images not tagged as linear are
     /// decoded from sRGB to linear (Mitsuba's behaviour); float images are used as stored.
     /// Errors name the file. Files already loaded (and still in use) with the same `raw` are shared.
     static std::shared_ptr<const Bitmap> load(const std::string& path, bool raw);
