@@ -33,7 +33,7 @@ SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl,
         if (!hit) {
             if (countEmission)
                 for (const Light* light : scene_.infiniteLights()) {
-                    const SampledSpectrum Le = light->Le(vec3(0.0f), vec3(0.0f), -ray.d, wl);
+                    const SampledSpectrum Le = light->Le(vec3(0.0f), vec3(0.0f), ray.d, wl);
                     if (depth == 1 || specularBounce) {
                         L += beta * Le;
                     } else {

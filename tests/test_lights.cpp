@@ -234,3 +234,45 @@ TEST(Lights, EnvironmentMapSpectralLookupMatchesCornerSpectra) {
     }
     std::remove(path.c_str());
 }
+
+namespace {
+/// A lat-long map (identity to_world) that is 1 for directions with world z > 0 and 0 below:
+/// u = atan2(x, −z)/2π, so z > 0 is the middle half of the columns, u ∈ (1/4, 3/4).
+LightPtr upperHemisphereEnvmap(const std::string& path) {
+    const int w = 32, h = 16;
+    Image img(w, h, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) img.at(x, y, c) = (x >= w / 4 && x < 3 * w / 4) ? 1.0f : 0.0f;
+    writeEXR(path, img);
+    Properties p("emitter", "envmap", SourceLocation{"<test>", 0});
+    p.set("filename", std::string(path), SourceLocation{});
+    return LightRegistry::instance().create(p);
+}
+}  // namespace
+
+TEST(Lights, EscapedRaysSeeTheEnvironmentInTheirOwnDirection) {
+    // Light::Le of an infinite light takes the direction the ray leaves in (the same convention
+    // as sampleLi's wi). A camera looking down −z sees the dark half; a floor facing +z under the
+    // bright half reflects exactly its albedo (E = π·1, L = ρE/π), whether the light is reached by
+    // next-event estimation or by BSDF sampling (MIS combines both). Reading Le at −d instead
+    // shows the bright half in the background and loses the BSDF-sampled half of the floor.
+    const std::string path = ::testing::TempDir() + "iris_env_upper.exr";
+    {
+        SceneDescription d = floorScene(0.5f);
+        d.shapes.clear();
+        d.lights.push_back(upperHemisphereEnvmap(path));
+        const Scene scene(std::move(d));
+        double se;
+        EXPECT_EQ(meanY(scene, true, 4, 3, &se), 0.0);
+    }
+    {
+        SceneDescription d = floorScene(0.5f);
+        d.lights.push_back(upperHemisphereEnvmap(path));
+        const Scene scene(std::move(d));
+        double se;
+        const double m = meanY(scene, true, 256, 5, &se);
+        EXPECT_NEAR(m, 0.5, 5 * se + 1e-3);
+    }
+    std::remove(path.c_str());
+}
