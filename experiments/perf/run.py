@@ -3,7 +3,7 @@
 machine in one run, compares with the targets and, where a target is missed, profiles the
 relevant run with `perf record` and summarises where the time goes.
 
-    /usr/bin/python3 experiments/perf/run.py [--quick] [--build DIR] [--out DIR] [--no-perf]
+    /usr/bin/python3 experiments/perf/run.py [--quick] [--build DIR] [--out DIR] [--no-perf] [--no-instructions]
 
 Writes <out>/report.md, <out>/measurements.json, <out>/targets.csv and <out>/profiles/*.txt
 (default out: experiments/perf/results). Needs the benchmarks built in --build (default build-perf,
@@ -90,8 +90,8 @@ class Ctx:
         self.loads.append({"when": when, "time": datetime.datetime.utcnow().isoformat(timespec="seconds") + "Z",
                            "load1": la[0], "load5": la[1], "load15": la[2]})
 
-    def render(self, scene, *opts, spp=None, threads=1, mode=None, defines=(), out_name="r.exr"):
-        """One `render` run; returns (Child, metadata)."""
+    def render_cmd(self, scene, *opts, spp=None, threads=1, mode=None, defines=(), out_name="r.exr"):
+        """The `render` command line used by render() (and, under valgrind, by instr_per_spp)."""
         path = os.path.join(self.tmp, out_name)
         cmd = [self.exe("render"), scene, "--quiet", "--no-png", "-o", path, "--threads", str(threads)]
         if spp is not None:
@@ -103,6 +103,11 @@ class Ctx:
         for d in defines:
             cmd += ["-D", d]
         cmd += list(opts)
+        return cmd, path
+
+    def render(self, scene, *opts, **kw):
+        """One `render` run; returns (Child, metadata)."""
+        cmd, path = self.render_cmd(scene, *opts, **kw)
         c = Child(cmd, env=self.env)
         return c, exr_meta(path)
 
@@ -194,26 +199,54 @@ def t1_shading_overhead(ctx):
                       "--benchmark_filter=BM_RendererPathTracing/4$", "--benchmark_min_time=2"])
 
 
-def cpu_per_spp(ctx, scene, spp_lo, spp_hi, reps, **kw):
+def cpu_per_spp_interleaved(ctx, scene, spp_lo, spp_hi, reps, variants):
     """CPU seconds per sample (difference of two spp counts: start-up cancels) and the median
-    render_time_s per sample at spp_hi."""
-    diffs, walls = [], []
+    render_time_s per sample at spp_hi, for several variants (dicts of render() keywords),
+    interleaved run by run so that slow drifts of the machine's speed (other virtual machines on
+    the host, frequency) fall on every variant alike instead of on whichever ran during the slow
+    minute. Returns one (cpu, wall, cpu_runs, wall_runs) tuple per variant."""
+    diffs = [[] for _ in variants]
+    walls = [[] for _ in variants]
     for _ in range(reps):
-        lo, _m = ctx.render(scene, spp=spp_lo, **kw)
-        hi, meta = ctx.render(scene, spp=spp_hi, **kw)
-        diffs.append((hi.cpu - lo.cpu) / (spp_hi - spp_lo))
-        walls.append(float(meta["iris.render_time_s"]) / spp_hi)
-    return median(diffs), median(walls), diffs, walls
+        for i, kw in enumerate(variants):
+            lo, _m = ctx.render(scene, spp=spp_lo, **kw)
+            hi, meta = ctx.render(scene, spp=spp_hi, **kw)
+            diffs[i].append((hi.cpu - lo.cpu) / (spp_hi - spp_lo))
+            walls[i].append(float(meta["iris.render_time_s"]) / spp_hi)
+    return [(median(d), median(w), d, w) for d, w in zip(diffs, walls)]
+
+
+def instructions(ctx, cmd):
+    """Instructions executed by cmd under callgrind (valgrind's own count: repeatable whatever
+    else the machine is doing), or None when valgrind is missing or disabled."""
+    if ctx.args.no_instructions or not shutil.which("valgrind"):
+        return None
+    out = os.path.join(ctx.tmp, "callgrind.out")
+    c = Child(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}"] + cmd, env=ctx.env)
+    m = re.search(r"Collected\s*:\s*(\d+)", c.err)
+    return int(m.group(1)) if m else None
+
+
+def instr_per_spp(ctx, scene, spp_lo, spp_hi, **kw):
+    """Instructions per sample: difference of two spp counts under callgrind (start-up cancels)."""
+    lo = instructions(ctx, ctx.render_cmd(scene, spp=spp_lo, **kw)[0])
+    hi = instructions(ctx, ctx.render_cmd(scene, spp=spp_hi, **kw)[0])
+    if lo is None or hi is None:
+        return None
+    return (hi - lo) / (spp_hi - spp_lo)
 
 
 def t2_spectral_cost(ctx):
     scene = os.path.join(REPO, "scenes", "thinfilm_spheres.xml")
     res_px = "96" if ctx.quick else "128"
-    lo, hi, reps = (1, 5, 2) if ctx.quick else (2, 16, 3)
+    lo, hi, reps = (1, 5, 2) if ctx.quick else (4, 52, 5)
     out = {}
-    for mode in ["rgb", 4, 16, 32]:
-        cpu, wall, d, w = cpu_per_spp(ctx, scene, lo, hi, reps, mode=mode, defines=[f"res={res_px}"])
-        out[str(mode)] = {"cpu_s_per_spp": cpu, "render_time_s_per_spp": wall, "cpu_runs": d, "wall_runs": w}
+    modes = ["rgb", 4, 16, 32]
+    timed = cpu_per_spp_interleaved(ctx, scene, lo, hi, reps, [{"mode": m, "defines": [f"res={res_px}"]} for m in modes])
+    for mode, (cpu, wall, d, w) in zip(modes, timed):
+        ins = instr_per_spp(ctx, scene, 1, 3, mode=mode, defines=["res=64"])
+        out[str(mode)] = {"cpu_s_per_spp": cpu, "render_time_s_per_spp": wall, "cpu_runs": d, "wall_runs": w,
+                          "instructions_per_spp_64px": ins}
     ctx.m["spectral_cost"] = {"scene": "scenes/thinfilm_spheres.xml", "res": res_px, "spp": [lo, hi], "reps": reps,
                               "modes": out}
     missed = []
@@ -222,8 +255,10 @@ def t2_spectral_cost(ctx):
         rw = out[str(n)]["render_time_s_per_spp"] / out["rgb"]["render_time_s_per_spp"]
         lo_r = min(out[str(n)]["cpu_runs"]) / max(out["rgb"]["cpu_runs"])
         hi_r = max(out[str(n)]["cpu_runs"]) / min(out["rgb"]["cpu_runs"])
+        ri = out[str(n)]["instructions_per_spp_64px"], out["rgb"]["instructions_per_spp_64px"]
+        itxt = f"; instructions: {ri[0] / ri[1]:.2f}×" if ri[0] and ri[1] else ""
         ctx.row("2", f"Spectral cost, thin-film scene: time per sample N={n} ÷ RGB mode",
-                f"{r:.2f}× CPU time (range over runs {lo_r:.2f}–{hi_r:.2f}; render_time_s: {rw:.2f}×)", f"≤ {target:g}×", r <= target,
+                f"{r:.2f}× CPU time (range over runs {lo_r:.2f}–{hi_r:.2f}; render_time_s: {rw:.2f}×{itxt})", f"≤ {target:g}×", r <= target,
                 f"{r / target:.2f}× the target" if r > target else f"{100 * (1 - r / target):.0f} % below")
         if r > target:
             missed.append(n)
@@ -239,7 +274,7 @@ def t2_spectral_cost(ctx):
 def t3_thesis_models(ctx):
     scene = os.path.join(SCENES, "thesis_pair.xml")
     res_px = "64" if ctx.quick else "128"
-    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 36, 5)
+    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 52, 5)
     # Warm-up: the proposed model acquires the rough tables (built once into IRIS_CACHE_DIR).
     ctx.render(scene, spp=1, mode="rgb", defines=["material=proposed", "res=16"])
     out = {}
@@ -247,11 +282,17 @@ def t3_thesis_models(ctx):
     for integ in ["direct", "path"]:
         for mode in (["rgb"] if ctx.quick else ["rgb", 4]):
             r = {}
-            for mat in ["granier", "proposed"]:
-                cpu, wall, d, w = cpu_per_spp(ctx, scene, lo, hi, reps, mode=mode,
-                                              defines=[f"res={res_px}", f"material={mat}", f"integrator={integ}"])
-                r[mat] = {"cpu_s_per_spp": cpu, "render_time_s_per_spp": wall, "cpu_runs": d, "wall_runs": w}
+            mats = ["granier", "proposed"]
+            timed = cpu_per_spp_interleaved(ctx, scene, lo, hi, reps, [
+                {"mode": mode, "defines": [f"res={res_px}", f"material={mat}", f"integrator={integ}"]} for mat in mats])
+            for mat, (cpu, wall, d, w) in zip(mats, timed):
+                ins = instr_per_spp(ctx, scene, 2, 6, mode=mode,
+                                    defines=["res=64", f"material={mat}", f"integrator={integ}"])
+                r[mat] = {"cpu_s_per_spp": cpu, "render_time_s_per_spp": wall, "cpu_runs": d, "wall_runs": w,
+                          "instructions_per_spp_64px": ins}
             slow = r["proposed"]["cpu_s_per_spp"] / r["granier"]["cpu_s_per_spp"] - 1
+            ip, ig = r["proposed"]["instructions_per_spp_64px"], r["granier"]["instructions_per_spp_64px"]
+            itxt = f"; instructions: {100 * (ip / ig - 1):+.1f} %" if ip and ig else ""
             sloww = r["proposed"]["render_time_s_per_spp"] / r["granier"]["render_time_s_per_spp"] - 1
             key = f"{integ}_{mode}"
             out[key] = {"materials": r, "proposed_slower_cpu": slow, "proposed_slower_render_time": sloww}
@@ -260,7 +301,7 @@ def t3_thesis_models(ctx):
             hi_s = max(r["proposed"]["cpu_runs"]) / min(r["granier"]["cpu_runs"]) - 1
             ctx.row("3", f"Thesis models, dragon, {integ} integrator, {mlabel}: proposed vs granier time per sample",
                     f"{100 * slow:+.1f} % CPU time (range over runs {100 * lo_s:+.0f} to {100 * hi_s:+.0f} %; "
-                    f"render_time_s: {100 * sloww:+.1f} %)", "≤ +5 %", slow <= 0.05,
+                    f"render_time_s: {100 * sloww:+.1f} %{itxt})", "≤ +5 %", slow <= 0.05,
                     f"{100 * (slow - 0.05):+.1f} points")
             if slow > 0.05:
                 missed.append((integ, mode))
@@ -537,16 +578,19 @@ def method_text(ctx):
         s = m["spectral_cost"]
         L.append(f"2. `render scenes/thinfilm_spheres.xml --threads 1 -D res={s['res']}` in RGB mode and with "
                  f"`--spectral-samples 4/16/32`; per-sample cost = (CPU({s['spp'][1]} spp) − CPU({s['spp'][0]} spp)) / "
-                 f"{s['spp'][1] - s['spp'][0]}, median of {s['reps']} pairs; render_time_s (EXR metadata) per sample for "
+                 f"{s['spp'][1] - s['spp'][0]}, median of {s['reps']} pairs, the four modes interleaved run by run; render_time_s (EXR metadata) per sample for "
                  "comparison. Per-sample CPU seconds: " + ", ".join(
-                     f"{k}: {1000 * v['cpu_s_per_spp']:.1f} ms" for k, v in s["modes"].items()) + ".")
+                     f"{k}: {1000 * v['cpu_s_per_spp']:.1f} ms" for k, v in s["modes"].items()) + ". "
+                 "The instruction ratio beside it is counted by callgrind (`valgrind --tool=callgrind`, "
+                 "64×64, 3 spp − 1 spp, whole process): repeatable under load, but blind to cache misses.")
     if "thesis_models" in m:
         t = m["thesis_models"]
         L.append(f"3. `experiments/perf/scenes/thesis_pair.xml` (Stanford dragon, 100k triangles, on a floor, area light + "
                  f"constant sky; `-D material=granier|proposed` selects a material file with the parameters of thesis "
                  f"Tables 4.3/4.4, nothing else differs; `-D integrator=direct|path`), {t['res']}×{t['res']}, 1 thread, "
-                 f"same differenced CPU measure ({t['spp'][0]} vs {t['spp'][1]} spp, median of {t['reps']}). The "
-                 "thesis models are defined per RGB channel, so RGB mode is the thesis' setting; spectral N=4 is shown too.")
+                 f"same differenced CPU measure ({t['spp'][0]} vs {t['spp'][1]} spp, median of {t['reps']}, the two materials interleaved run by run). The "
+                 "thesis models are defined per RGB channel, so RGB mode is the thesis' setting; spectral N=4 is shown too. "
+                 "Instructions: callgrind, 64×64, 6 spp − 2 spp, as for target 2.")
     L.append("4. `bench_perf_thinfilm` (Google Benchmark, median of 3 repetitions, CPU time): `fresnelConductor` "
              "(materials/fresnel.h, SampledSpectrum overload, float) at 4 wavelengths vs 4 calls of `airySingleFilm` "
              "(spectral/film_stack.h, complex double) and 4 calls of `filmStackRT` with 10 layers.")
@@ -779,6 +823,8 @@ def main():
     ap.add_argument("--build", default=os.path.join(REPO, "build-perf"))
     ap.add_argument("--out", default=os.path.join(REPO, "experiments", "perf", "results"))
     ap.add_argument("--no-perf", action="store_true", help="skip perf profiles")
+    ap.add_argument("--no-instructions", action="store_true",
+                    help="skip the callgrind instruction counts of targets 2 and 3")
     ap.add_argument("--only", default="1234567", help="targets to measure (digits), default all")
     args = ap.parse_args()
     ctx = Ctx(args)
