@@ -22,16 +22,27 @@ float visibleWavelengthPdf(float lambda) {
 
 namespace {
 const float kVisTanhMin = std::tanh(kVisA * (kLambdaMin - kVisCenter));
+const double kVisInvNorm = 1.0 / double(kVisNorm);
+
+struct VisibleSample {
+    float lambda, pdf;
+};
+
+/// Inverse-CDF sample of the visible pdf and its density. Invert F(λ) = (tanh(a(λ−c)) −
+/// tanh(a(λmin−c))) / (a·norm) for t = tanh(a(λ−c)); then λ = c + atanh(t)/a with
+/// atanh t = ½ ln((1 + t)/(1 − t)) (in double: more accurate than atanhf's log1pf, and cheaper), and,
+/// because 1/cosh²x = 1 − tanh²x, the density is p = (1 − t²)/norm without another exp: it is
+/// visibleWavelengthPdf at the unrounded λ (tests/test_wavelengths.cpp compares the two).
+VisibleSample sampleVisibleAt(float u) {
+    const float t = std::clamp(kVisTanhMin + u * kVisA * kVisNorm, -0.99999994f, 0.99999994f);
+    const double td = t;
+    constexpr double kHalfInvA = 0.5 / double(kVisA);
+    const float lambda = float(double(kVisCenter) + kHalfInvA * std::log((1.0 + td) / (1.0 - td)));
+    return {std::clamp(lambda, kLambdaMin, kLambdaMax), float((1.0 - td * td) * kVisInvNorm)};
+}
 }  // namespace
 
-float sampleVisibleWavelength(float u) {
-    // Invert F(λ) = (tanh(a(λ−c)) − tanh(a(λmin−c))) / (a·norm).
-    const float t = std::clamp(kVisTanhMin + u * kVisA * kVisNorm, -0.99999994f, 0.99999994f);
-    // atanh t = ½ ln((1 + t)/(1 − t)), in double (more accurate than atanhf's log1pf, and cheaper).
-    const double td = t;
-    const float lambda = float(double(kVisCenter) + 0.5 * std::log((1.0 + td) / (1.0 - td)) / double(kVisA));
-    return std::clamp(lambda, kLambdaMin, kLambdaMax);
-}
+float sampleVisibleWavelength(float u) { return sampleVisibleAt(u).lambda; }
 
 SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
@@ -40,8 +51,9 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     for (int i = 0; i < n; ++i) {
         float up = u + float(i) / n;
         if (up >= 1.0f) up -= 1.0f;
-        wl.lambda_[i] = sampleVisibleWavelength(up);
-        wl.pdf_[i] = visibleWavelengthPdf(wl.lambda_[i]);
+        const VisibleSample vs = sampleVisibleAt(up);
+        wl.lambda_[i] = vs.lambda;
+        wl.pdf_[i] = vs.pdf;
     }
     return wl;
 }

@@ -51,7 +51,8 @@ TEST(Wavelengths, HeroRotationsAreStratified) {
         EXPECT_FALSE(wl.isRGB());
         for (int i = 0; i < n; ++i) {
             EXPECT_GT(wl.pdf(i), 0.0f);
-            EXPECT_FLOAT_EQ(wl.pdf(i), visibleWavelengthPdf(wl.lambda(i)));
+            // The pdf comes from the sample's tanh value, not from the rounded λ (see below).
+            EXPECT_NEAR(wl.pdf(i), visibleWavelengthPdf(wl.lambda(i)), 2e-6f * wl.pdf(i));
         }
         // The primary samples (0.3 + i/n) mod 1 each fall in a different 1/n stratum.
         std::vector<int> strata(n, 0);
@@ -101,5 +102,25 @@ TEST(Wavelengths, FastFormsMatchTheTanhDefinition) {
         // The sampler forms t in float (as before): |dλ/dt| = 1/(a(1−t²)) ≤ 2.4e3 nm times the
         // rounding of t near 1 (1.2e-7) is 2.9e-4 nm, plus half an ulp of λ (3e-5 nm).
         EXPECT_NEAR(sampleVisibleWavelength(u), ref, 4e-4) << u;
+    }
+}
+
+TEST(Wavelengths, SampledPdfIsTheDensityAtTheSampledWavelength) {
+    // sampleVisible takes p = (1 − t²)/norm from the tanh value t it inverted (1/cosh² = 1 − tanh²)
+    // instead of evaluating visibleWavelengthPdf(λ) again. The two differ only by rounding: λ is
+    // rounded to float (half an ulp ≤ 3.1e-5 nm at 830 nm) and |d ln p/dλ| = 2a|tanh| ≤ 0.0144/nm,
+    // i.e. ≤ 4.4e-7 relative, plus a few float ulps (≤ 6e-7) in evaluating visibleWavelengthPdf.
+    Pcg32 rng(11, 5);
+    double worst = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const SampledWavelengths wl = SampledWavelengths::sampleVisible(rng.uniform(), 1);
+        const double p = visibleWavelengthPdf(wl.lambda(0));
+        worst = std::max(worst, std::abs(wl.pdf(0) - p) / p);
+    }
+    EXPECT_LT(worst, 2e-6);
+    // The end points of the range.
+    for (float u : {0.0f, 0.99999994f}) {
+        const SampledWavelengths wl = SampledWavelengths::sampleVisible(u, 1);
+        EXPECT_NEAR(wl.pdf(0), visibleWavelengthPdf(wl.lambda(0)), 2e-6f * wl.pdf(0));
     }
 }
