@@ -129,9 +129,4 @@ inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants
     return true;
 }
 
-inline bool airySingleFilmFastInline(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
-                                     const SquaredIndex& substrate, FilmStackResult& out) {
-    return airySingleFilmFastAt(airyAngle(cosThetaIncident, incidentIor), film, substrate, out);
-}
-
 }  // namespace iris

@@ -166,7 +166,6 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
 // ---- FilmCoating ----
 
 namespace {
-constexpr double kTwoPiD = 6.283185307179586476925286766559;  // as in film_stack.cpp (k0 = 2π/λ)
 /// Textured thickness: negative, NaN or infinite values (e.g. from a bitmap) become 0 nm.
 double sanitizeThickness(float t) { return std::isfinite(t) ? std::max(0.0f, t) : 0.0; }
 }  // namespace
@@ -242,7 +241,7 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, L
             const bool sameFilm = k > 0 && film_[k] == film_[k - 1], sameSub = k > 0 && substrate_[k] == substrate_[k - 1];
             const SquaredIndex n1 = sameFilm ? SquaredIndex{airy[k - 1].film.n1sq, airy[k - 1].film.invN1sq}
                                              : squaredIndex(film_[k]);
-            new (airy + k) AiryEntry{AiryFilmConstants{n1.sq, n1.inv, kTwoPiD / lambda_[k] * thickness_},
+            new (airy + k) AiryEntry{airyFilmConstants(lambda_[k], thickness_, n1),
                                      sameSub ? airy[k - 1].substrate : squaredIndex(substrate_[k])};
         }
         airy_ = airy;
@@ -262,10 +261,7 @@ FilmStackResult clampEnergy(FilmStackResult r) {
 }  // namespace
 
 FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
-    if (airy_) {  // exact single film: hoisted constants, fast path (falls back below on degenerate cases)
-        FilmStackResult r;
-        if (airySingleFilmFast(cosTheta, extIor_, airy_[k].film, airy_[k].substrate, r)) return clampEnergy(r);
-    }
+    if (airy_) return exactAt(k, cosTheta, false, airyAngle(cosTheta, extIor_));  // exact single film, hoisted constants
     const int stride = 1 + nExtra_;
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
@@ -275,10 +271,7 @@ FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
 FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     const int stride = 1 + nExtra_;
     const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
-    if (airy_) {
-        FilmStackResult r;
-        if (airySingleFilmFast(cosTheta, inc, airy_[k].film, extSq_, r)) return clampEnergy(r);
-    }
+    if (airy_) return exactAt(k, cosTheta, true, airyAngle(cosTheta, inc));
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
     Layer rev[9];
@@ -286,17 +279,16 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
 }
 
-/// Exact single film at entry k from the hoisted constants (airy_ set) and the angle terms of the
-/// incident medium: the fast kernel with the same clamps as stackRT, the general per-entry path
-/// when the kernel declines.
-inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
+/// Exact single film at entry k (airy_ set: one film, no extra layers) from the hoisted constants
+/// and the angle terms of the incident medium (the substrate when `below`). When the fast kernel
+/// declines (q1 = 0 exactly, or a non-finite result) the transfer matrix takes over, as in
+/// airySingleFilm.
+FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     FilmStackResult r;
-    if (!airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r))
-        return below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta);
-    // clampEnergy: Rs, Rp ∈ [0, 1] and Ts, Tp ≥ 0 hold already; T ≤ 1 − R.
-    r.Ts = std::min(r.Ts, 1.0 - r.Rs);
-    r.Tp = std::min(r.Tp, 1.0 - r.Rp);
-    return r;
+    if (airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r)) return clampEnergy(r);
+    const double inc = below ? substrate_[k].real() : extIor_;
+    const complexd sub = below ? complexd(extIor_, 0.0) : substrate_[k];
+    return clampEnergy(filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(layers_ + k, 1), sub));
 }
 
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {

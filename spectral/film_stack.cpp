@@ -211,14 +211,16 @@ SquaredIndex squaredIndex(complexd ior) {
     const double nn = airy_detail::cnorm(sq);
     return {sq, complexd(sq.real() / nn, -sq.imag() / nn)};  // 1/z = conj(z)/|z|²
 }
+AiryFilmConstants airyFilmConstants(double lambdaNm, double thicknessNm, const SquaredIndex& n1) {
+    return {n1.sq, n1.inv, kTwoPi / lambdaNm * thicknessNm};  // k0 d = 2π d/λ
+}
 AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film) {
-    const SquaredIndex n = squaredIndex(film.ior);
-    return {n.sq, n.inv, kTwoPi / lambdaNm * film.thicknessNm};
+    return airyFilmConstants(lambdaNm, film.thicknessNm, squaredIndex(film.ior));
 }
 
 bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
                         const SquaredIndex& substrate, FilmStackResult& out) {
-    return airySingleFilmFastInline(cosThetaIncident, incidentIor, film, substrate, out);
+    return airySingleFilmFastAt(airyAngle(cosThetaIncident, incidentIor), film, substrate, out);
 }
 
 FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,

@@ -71,13 +71,13 @@ enum class FilmPhaseMode {
 /// Closed-form Airy summation for one film (Born & Wolf §1.6.4; Heavens,
 /// "Optical Properties of Thin Solid Films", ch. 4):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
 /// t = t01 t12 e^{iδ}/(1 + r01 r12 e^{2iδ}),  δ = 2π ñ1 d cosθ1 / λ.
-/// Evaluated by airySingleFilmFast (below), with airySingleFilmReference as its fallback.
+/// Evaluated by airySingleFilmFast (below); where that declines, by the transfer matrix (filmStackRT).
 FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor);
 
 /// The original formulation of airySingleFilm (complex interface coefficients r01, r12 and
-/// std::complex division). Kept as the reference the fast path is tested against and as its
-/// fallback for degenerate denominators.
+/// std::complex division). Kept as the reference the fast path is tested against (and for the
+/// benchmark's before/after figure); the renderer does not call it.
 FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
                                         const Layer& film, complexd substrateIor);
 
@@ -87,12 +87,14 @@ struct AiryFilmConstants {
     complexd n1sq, invN1sq;
     double k0d = 0;
 };
-AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film);
 /// Squared index and its reciprocal (for the p admittance y_p = q/ñ²), in real arithmetic.
 struct SquaredIndex {
     complexd sq, inv;
 };
 SquaredIndex squaredIndex(complexd ior);
+AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film);
+/// The same from an already squared film index (FilmCoating reuses it across equal indices).
+AiryFilmConstants airyFilmConstants(double lambdaNm, double thicknessNm, const SquaredIndex& n1);
 
 /// Fast exact Airy sum (docs/thin_film.md §8): s and p from one q1, q2 and one sin/cos pair;
 /// no complex division. With P = 1 + e^{2iδ}, M = 1 − e^{2iδ} (from the half angle, no cancellation)
