@@ -81,9 +81,7 @@ public:
                 f[c] = fr + ft;
                 continue;
             }
-            // Specular refraction of wi and wo into the film about n0 (eq. 3.1–3.2 reading).
-            const float inv = 1.0f / eta;
-            const float cosTi = safeSqrt(1.0f - inv * inv * (1.0f - wiC.z * wiC.z));
+            const float cosTi = filmCosine(eta, wiC.z);
             const float cosTo = o.cosTo[c];
             const float phi = kPi * k.etaT * p_.d / k.lambda * (cosTi + cosTo);  // eq. 3.20
             const float cos2phi = std::cos(2.0f * phi);
@@ -159,11 +157,15 @@ private:
         float t = 0.0f;
         for (int c = 0; c < n; ++c) t += o.tO[c];
         o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
-        for (int c = 0; c < n; ++c) {
-            const float inv = 1.0f / p_.ch[c].eta;
-            o.cosTo[c] = safeSqrt(1.0f - inv * inv * (1.0f - o.woC.z * o.woC.z));
-        }
+        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].eta, o.woC.z);
         return o;
+    }
+
+    /// Cosine of a direction (cosine cosC about n0) refracted specularly into the film of relative
+    /// index eta (eqs. 3.1–3.2 reading; Snell's law).
+    static float filmCosine(float eta, float cosC) {
+        const float inv = 1.0f / eta;
+        return safeSqrt(1.0f - inv * inv * (1.0f - cosC * cosC));
     }
 
     Params p_;

@@ -23,13 +23,18 @@ struct RoughCoatGeometry {
     vec3 h{0, 0, 1};
     float dg = 0.0f;
 };
+/// Normalised half vector h = (wo + wi)/|wo + wi| of a reflection; false when wo + wi vanishes.
+inline bool roughCoatHalfVector(const vec3& wo, const vec3& wi, vec3& h) {
+    h = wo + wi;
+    const float len = glm::length(h);
+    if (!(len > 0)) return false;
+    h /= len;
+    return true;
+}
+
 inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi) {
     RoughCoatGeometry g;
-    if (wo.z <= 0 || wi.z <= 0) return g;
-    const vec3 h = wo + wi;
-    const float len = glm::length(h);
-    if (!(len > 0)) return g;
-    g.h = h / len;
+    if (wo.z <= 0 || wi.z <= 0 || !roughCoatHalfVector(wo, wi, g.h)) return RoughCoatGeometry{};
     g.dg = dist.D(g.h) * dist.G(wi, wo, g.h) / (4.0f * wi.z * wo.z);
     return g;
 }
@@ -41,11 +46,7 @@ inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, c
 inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi,
                                            float g1o) {
     RoughCoatGeometry g;
-    if (wo.z <= 0 || wi.z <= 0) return g;
-    const vec3 h = wo + wi;
-    const float len = glm::length(h);
-    if (!(len > 0)) return g;
-    g.h = h / len;
+    if (wo.z <= 0 || wi.z <= 0 || !roughCoatHalfVector(wo, wi, g.h)) return RoughCoatGeometry{};
     const float g1wo = glm::dot(wo, g.h) * wo.z <= 0 ? 0.0f : g1o;  // MicrofacetDistribution::smithG1
     g.dg = dist.D(g.h) * (dist.G1(wi, g.h) * g1wo) / (4.0f * wi.z * wo.z);
     return g;
@@ -57,14 +58,8 @@ inline float roughCoatSpecular(const RoughCoatGeometry& g, const vec3& wo, float
     return g.dg > 0 ? fresnelDielectric(glm::dot(wo, g.h), eta) * g.dg : 0.0f;
 }
 
-/// Diffuse path through the coat without the base albedo: T12 T21 / (π η²)  (eq. 2.55), on the
-/// table line of this (η, α).
-inline float roughCoatDiffuse(const RoughTransmittanceTables& t, const RoughTransmittanceTables::Line& line, float eta,
-                              float cosI, float cosO) {
-    return t.transmittance(line, cosI) * t.transmittance(line, cosO) * kInvPi / (eta * eta);
-}
-
-/// The same from the two transmittances T12 = T(η, α, cosθi), T21 = T(η, α, cosθo).
+/// Diffuse path through the coat without the base albedo: T12 T21 / (π η²)  (eq. 2.55), from the
+/// two transmittances T12 = T(η, α, cosθi), T21 = T(η, α, cosθo).
 inline float roughCoatDiffuse(float t12, float t21, float eta) { return t12 * t21 * kInvPi / (eta * eta); }
 
 /// T(η_c, α, μ) for the channels c of one BSDF, read (constant α) from collapsed μ-lines (one per
@@ -110,10 +105,8 @@ inline float roughCoatSpecularProbability(float ksAvg, float rhoAvg, float t12Av
 
 /// Density of reflecting wo about a visible-normal sample: D_wo(h) / (4 |wo·h|).
 inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi) {
-    vec3 h = wo + wi;
-    const float len = glm::length(h);
-    if (!(len > 0)) return 0.0f;
-    h /= len;
+    vec3 h;
+    if (!roughCoatHalfVector(wo, wi, h)) return 0.0f;
     const float woh = glm::dot(wo, h);
     if (woh <= 0) return 0.0f;
     return dist.pdf(wo, h) / (4.0f * woh);
@@ -123,10 +116,8 @@ inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3
 /// and visible-normal sampling: G1(wo, h) (wo·h)₊ D(h)/wo.z ([HD14] eq. 2) over 4 (wo·h). The
 /// same float operations as roughCoatSpecularPdf(dist, wo, wi) (MicrofacetDistribution::pdf).
 inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi, float g1o) {
-    vec3 h = wo + wi;
-    const float len = glm::length(h);
-    if (!(len > 0)) return 0.0f;
-    h /= len;
+    vec3 h;
+    if (!roughCoatHalfVector(wo, wi, h)) return 0.0f;
     const float woh = glm::dot(wo, h);
     if (woh <= 0) return 0.0f;
     const float g1 = woh * wo.z <= 0 ? 0.0f : g1o;  // χ+ of smithG1(wo, h)
