@@ -283,9 +283,15 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
 /// and the angle terms of the incident medium (the substrate when `below`). When the fast kernel
 /// declines (q1 = 0 exactly, or a non-finite result) the transfer matrix takes over, as in
 /// airySingleFilm.
-FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
+inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     FilmStackResult r;
-    if (airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r)) return clampEnergy(r);
+    if (airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r)) {
+        // clampEnergy's result: the kernel already returns Rs, Rp ∈ [0, 1] and Ts, Tp ∈ [0, 1],
+        // so only T ≤ 1 − R remains (this runs per wavelength per evaluation).
+        r.Ts = std::min(r.Ts, 1.0 - r.Rs);
+        r.Tp = std::min(r.Tp, 1.0 - r.Rp);
+        return r;
+    }
     const double inc = below ? substrate_[k].real() : extIor_;
     const complexd sub = below ? complexd(extIor_, 0.0) : substrate_[k];
     return clampEnergy(filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(layers_ + k, 1), sub));
