@@ -30,32 +30,22 @@ public:
     float operator[](int i) const { return v_[i]; }
     float& operator[](int i) { return v_[i]; }
 
-#define IRIS_SPECTRUM_OP(OP)                                                                         \
-    SampledSpectrum& operator OP##=(const SampledSpectrum& o) {                                      \
-        assert(o.n_ == n_);                                                                          \
-        for (int i = 0; i < padded(); i += kLanes)                                                   \
-            for (int k = 0; k < kLanes; ++k) v_[i + k] OP## = o.v_[i + k];                           \
-        return *this;                                                                                \
-    }                                                                                                \
-    SampledSpectrum& operator OP##=(float s) {                                                       \
-        for (int i = 0; i < padded(); i += kLanes)                                                   \
-            for (int k = 0; k < kLanes; ++k) v_[i + k] OP## = s;                                     \
-        return *this;                                                                                \
-    }                                                                                                \
-    friend SampledSpectrum operator OP(const SampledSpectrum& a, const SampledSpectrum& b) {         \
-        assert(a.n_ == b.n_);                                                                        \
-        SampledSpectrum r;                                                                           \
-        r.n_ = a.n_;                                                                                 \
-        for (int i = 0; i < a.padded(); i += kLanes)                                                 \
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = a.v_[i + k] OP b.v_[i + k];               \
-        return r;                                                                                    \
-    }                                                                                                \
-    friend SampledSpectrum operator OP(const SampledSpectrum& a, float s) {                          \
-        SampledSpectrum r;                                                                           \
-        r.n_ = a.n_;                                                                                 \
-        for (int i = 0; i < a.padded(); i += kLanes)                                                 \
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = a.v_[i + k] OP s;                         \
-        return r;                                                                                    \
+#define IRIS_SPECTRUM_OP(OP)                                                                  \
+    SampledSpectrum& operator OP##=(const SampledSpectrum& o) {                               \
+        assert(o.n_ == n_);                                                                   \
+        forLanes(padded(), [&](int j) { v_[j] OP## = o.v_[j]; });                             \
+        return *this;                                                                         \
+    }                                                                                         \
+    SampledSpectrum& operator OP##=(float s) {                                                \
+        forLanes(padded(), [&](int j) { v_[j] OP## = s; });                                   \
+        return *this;                                                                         \
+    }                                                                                         \
+    friend SampledSpectrum operator OP(const SampledSpectrum& a, const SampledSpectrum& b) {  \
+        assert(a.n_ == b.n_);                                                                 \
+        return fromLanes(a.n_, [&](int j) { return a.v_[j] OP b.v_[j]; });                    \
+    }                                                                                         \
+    friend SampledSpectrum operator OP(const SampledSpectrum& a, float s) {                   \
+        return fromLanes(a.n_, [&](int j) { return a.v_[j] OP s; });                          \
     }
     IRIS_SPECTRUM_OP(+)
     IRIS_SPECTRUM_OP(-)
@@ -63,32 +53,16 @@ public:
     IRIS_SPECTRUM_OP(/)
 #undef IRIS_SPECTRUM_OP
     friend SampledSpectrum operator*(float s, const SampledSpectrum& a) {
-        SampledSpectrum r;
-        r.n_ = a.n_;
-        for (int i = 0; i < a.padded(); i += kLanes)
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s * a.v_[i + k];
-        return r;
+        return fromLanes(a.n_, [&](int j) { return s * a.v_[j]; });
     }
     friend SampledSpectrum operator+(float s, const SampledSpectrum& a) {
-        SampledSpectrum r;
-        r.n_ = a.n_;
-        for (int i = 0; i < a.padded(); i += kLanes)
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s + a.v_[i + k];
-        return r;
+        return fromLanes(a.n_, [&](int j) { return s + a.v_[j]; });
     }
     friend SampledSpectrum operator-(float s, const SampledSpectrum& a) {
-        SampledSpectrum r;
-        r.n_ = a.n_;
-        for (int i = 0; i < a.padded(); i += kLanes)
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = s - a.v_[i + k];
-        return r;
+        return fromLanes(a.n_, [&](int j) { return s - a.v_[j]; });
     }
     SampledSpectrum operator-() const {
-        SampledSpectrum r;
-        r.n_ = n_;
-        for (int i = 0; i < padded(); i += kLanes)
-            for (int k = 0; k < kLanes; ++k) r.v_[i + k] = -v_[i + k];
-        return r;
+        return fromLanes(n_, [&](int j) { return -v_[j]; });
     }
 
     /// Component-wise division that returns 0 where the divisor is 0 (for pdf ratios).
@@ -143,6 +117,20 @@ public:
 
 private:
     int padded() const { return (n_ + kLanes - 1) & ~(kLanes - 1); }
+    /// f(j) for every lane j below `padded`, in fixed groups of kLanes (the SIMD-friendly loop).
+    template <typename F>
+    static void forLanes(int padded, F&& f) {
+        for (int i = 0; i < padded; i += kLanes)
+            for (int k = 0; k < kLanes; ++k) f(i + k);
+    }
+    /// A spectrum of n entries whose lane j (padding included) is f(j).
+    template <typename F>
+    static SampledSpectrum fromLanes(int n, F&& f) {
+        SampledSpectrum r;
+        r.n_ = n;
+        forLanes(r.padded(), [&](int j) { r.v_[j] = f(j); });
+        return r;
+    }
     int n_ = 0;
     alignas(16) float v_[kMaxWavelengths];
 };
