@@ -96,7 +96,6 @@ public:
     float pdf(float x) const;
     int count() const { return int(func_.size()); }
     float integral() const { return funcInt_; }
-    float func(int i) const { return func_[i]; }
 
     /// Index o of the interval with cdf[o] <= u < cdf[o+1] (clamped to [0, n−1]): guide table.
     int findInterval(float u) const;

@@ -25,9 +25,6 @@ public:
     /// illuminant spectra and apply the D65 factor once (it is common to all of them).
     float shapeValue(float lambda) const { return scale_ * (grey_ ? level_ : poly_(lambda)); }
     float d65Factor() const { return d65Scale_; }
-    float scale() const { return scale_; }
-    /// Grey level of the normalised shape (used when isGrey()).
-    float greyLevel() const { return level_; }
     float maxValue() const override { return max_; }
     SampledSpectrum sample(const SampledWavelengths& wl) const override;
     vec3 rgbValue() const override { return rgb_; }
