@@ -9,6 +9,7 @@
 #include "materials/belcour_barla.h"
 #include "materials/conductor_presets.h"
 #include "spectral/film_airy.h"
+#include "spectral/film_airy_batch.h"
 
 namespace iris {
 
@@ -57,6 +58,9 @@ float IorSpec::at(float lambda) const {
 
 SampledSpectrum IorSpec::sampleAll(const SampledWavelengths& wl) const {
     if (ior_) return ior_->sample(wl);
+    // A constant (or a triple of equal values): at() returns values_[0] at every wavelength.
+    if (!spectrum_ && (!perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2])))
+        return SampledSpectrum(wl.size(), values_[0]);
     SampledSpectrum r(wl.size());
     for (int k = 0; k < wl.size(); ++k) r[k] = sample(wl, k);
     return r;
@@ -183,30 +187,23 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
         const vec3& l = spec.rintCache->rgbLambdas;
         if (!rgb_ || (wl.lambda(0) == l[0] && wl.lambda(1) == l[1] && wl.lambda(2) == l[2])) rint_ = spec.rintCache.get();
     }
-    // Sample every index spectrum once for all wavelengths (IOR::sample is per spectrum, not per entry).
-    SampledSpectrum cache[4 + 2 * 8];
-    const IorSpec* keys[4 + 2 * 8];
-    int nKeys = 0;
-    auto add = [&](const IorSpec& s) {
-        if (nKeys == 4 + 2 * 8) return;  // more layers than the parser allows: sampled per entry below
-        keys[nKeys] = &s;
-        cache[nKeys++] = s.sampleAll(wl);
-    };
-    add(spec.filmIor);
-    add(spec.filmK);
-    add(spec.substrateEta);
-    add(spec.substrateK);
-    for (const auto& e : spec.extra) {
-        add(e.ior);
-        add(e.k);
+    // Every index spectrum sampled once for all wavelengths (IOR::sample is per spectrum, not per entry).
+    const SampledSpectrum filmN = spec.filmIor.sampleAll(wl), filmK = spec.filmK.sampleAll(wl);
+    const SampledSpectrum subN = spec.substrateEta.sampleAll(wl), subK = spec.substrateK.sampleAll(wl);
+    SampledSpectrum* extra = nullptr;  // layer j: extra[2j] index, extra[2j + 1] extinction
+    if (nExtra_ > 0) {
+        extra = static_cast<SampledSpectrum*>(arena.allocate(sizeof(SampledSpectrum) * 2 * nExtra_, alignof(SampledSpectrum)));
+        for (int j = 0; j < nExtra_; ++j) {
+            new (extra + 2 * j) SampledSpectrum(spec.extra[j].ior.sampleAll(wl));
+            new (extra + 2 * j + 1) SampledSpectrum(spec.extra[j].k.sampleAll(wl));
+        }
     }
-    init(spec, arena,
-         [&](const IorSpec& s, int k) {
-             for (int i = 0; i < nKeys; ++i)
-                 if (keys[i] == &s) return cache[i][k];
-             return s.sample(wl, k);
-         },
-         [&](int k) { return wl.lambda(k); });
+    for (int k = 0; k < n_; ++k) {
+        lambda_[k] = wl.lambda(k);
+        film_[k] = complexd(filmN[k], filmK[k]);
+        substrate_[k] = complexd(subN[k], subK[k]);
+    }
+    init(spec, arena, [&](int j, int k) { return complexd(extra[2 * j][k], extra[2 * j + 1][k]); });
 }
 
 FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena)
@@ -216,36 +213,55 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
       mode_(spec.mode),
       extIor_(spec.extIor),
       thickness_(sanitizeThickness(spec.thickness->eval(q))) {
-    init(spec, arena, [&](const IorSpec& s, int k) { return s.at(lambdas[k]); }, [&](int k) { return lambdas[k]; });
+    for (int k = 0; k < n_; ++k) {
+        lambda_[k] = lambdas[k];
+        film_[k] = complexd(spec.filmIor.at(lambdas[k]), spec.filmK.at(lambdas[k]));
+        substrate_[k] = complexd(spec.substrateEta.at(lambdas[k]), spec.substrateK.at(lambdas[k]));
+    }
+    init(spec, arena, [&](int j, int k) { return complexd(spec.extra[j].ior.at(lambdas[k]), spec.extra[j].k.at(lambdas[k])); });
 }
 
-template <typename IorAt, typename LambdaAt>
-void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda) {
+template <typename ExtraIorAt>
+void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor) {
+    if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
+        // The exact single film needs no Layer array (the rare transfer-matrix fallback builds its
+        // layer from film_ and thickness_): only the Airy constants, in SoA form, computed for all
+        // lanes at once with the operations of squaredIndex and airyFilmConstants (film_stack.cpp).
+        const int pad = airyPadded(n_);
+        double* a = static_cast<double*>(arena.allocate(sizeof(double) * kAiryArrays * pad, 32));
+        double* row[kAiryArrays];
+        for (int i = 0; i < kAiryArrays; ++i) row[i] = a + i * pad;
+        const SquaredIndex ext = squaredIndex(complexd(extIor_, 0.0));
+        for (int k = 0; k < pad; ++k) {
+            const int e = std::min(k, n_ - 1);  // padding lanes repeat the last entry
+            const double fr = film_[e].real(), fi = film_[e].imag(), sr = substrate_[e].real(), si = substrate_[e].imag();
+            const double n1r = fr * fr - fi * fi, n1i = fr * fi + fi * fr;  // ñ1² (cmul)
+            const double n2r = sr * sr - si * si, n2i = sr * si + si * sr;  // ñ2²
+            const double nn1 = n1r * n1r + n1i * n1i, nn2 = n2r * n2r + n2i * n2i;
+            row[kN1Re][k] = n1r;
+            row[kN1Im][k] = n1i;
+            row[kInv1Re][k] = n1r / nn1;  // 1/z = conj(z)/|z|²
+            row[kInv1Im][k] = -n1i / nn1;
+            row[kK0d][k] = kTwoPi / lambda_[e] * thickness_;  // k0 d = 2π d/λ
+            row[kN2Re][k] = n2r;
+            row[kN2Im][k] = n2i;
+            row[kInv2Re][k] = n2r / nn2;
+            row[kInv2Im][k] = -n2i / nn2;
+            row[kExtRe][k] = ext.sq.real();
+            row[kExtIm][k] = ext.sq.imag();
+            row[kExtInvRe][k] = ext.inv.real();
+            row[kExtInvIm][k] = ext.inv.imag();
+        }
+        airy_ = a;
+        airyStride_ = pad;
+        return;
+    }
     const int stride = 1 + nExtra_;
     layers_ = static_cast<Layer*>(arena.allocate(sizeof(Layer) * n_ * stride, alignof(Layer)));
     for (int k = 0; k < n_; ++k) {
-        lambda_[k] = lambda(k);
-        film_[k] = complexd(ior(spec.filmIor, k), ior(spec.filmK, k));
-        substrate_[k] = complexd(ior(spec.substrateEta, k), ior(spec.substrateK, k));
-        Layer* row = layers_ + k * stride;
-        new (row) Layer{film_[k], thickness_};
-        for (int j = 0; j < nExtra_; ++j) {
-            const auto& e = spec.extra[j];
-            new (row + 1 + j) Layer{complexd(ior(e.ior, k), ior(e.k, k)), e.thicknessNm};
-        }
-    }
-    if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
-        auto* airy = static_cast<AiryEntry*>(arena.allocate(sizeof(AiryEntry) * n_, alignof(AiryEntry)));
-        for (int k = 0; k < n_; ++k) {
-            // Constant indices repeat over k: reuse the previous entry's squares (same values).
-            const bool sameFilm = k > 0 && film_[k] == film_[k - 1], sameSub = k > 0 && substrate_[k] == substrate_[k - 1];
-            const SquaredIndex n1 = sameFilm ? SquaredIndex{airy[k - 1].film.n1sq, airy[k - 1].film.invN1sq}
-                                             : squaredIndex(film_[k]);
-            new (airy + k) AiryEntry{airyFilmConstants(lambda_[k], thickness_, n1),
-                                     sameSub ? airy[k - 1].substrate : squaredIndex(substrate_[k])};
-        }
-        airy_ = airy;
-        extSq_ = squaredIndex(complexd(extIor_, 0.0));
+        Layer* r = layers_ + k * stride;
+        new (r) Layer{film_[k], thickness_};
+        for (int j = 0; j < nExtra_; ++j) new (r + 1 + j) Layer{extraIor(j, k), spec.extra[j].thicknessNm};
     }
 }
 
@@ -282,26 +298,64 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
 /// Exact single film at entry k (airy_ set: one film, no extra layers) from the hoisted constants
 /// and the angle terms of the incident medium (the substrate when `below`). When the fast kernel
 /// declines (q1 = 0 exactly, or a non-finite result) the transfer matrix takes over, as in
-/// airySingleFilm.
+/// airySingleFilm. exactAll is the same over all entries at once.
 inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     FilmStackResult r;
-    if (airySingleFilmFastAt(angle, airy_[k].film, below ? extSq_ : airy_[k].substrate, r)) {
+    const AiryFilmConstants film{complexd(airyArray(kN1Re)[k], airyArray(kN1Im)[k]),
+                                 complexd(airyArray(kInv1Re)[k], airyArray(kInv1Im)[k]), airyArray(kK0d)[k]};
+    const int sub = below ? kExtRe : kN2Re;  // the four substrate arrays follow each other
+    const SquaredIndex substrate{complexd(airyArray(AiryArray(sub))[k], airyArray(AiryArray(sub + 1))[k]),
+                                 complexd(airyArray(AiryArray(sub + 2))[k], airyArray(AiryArray(sub + 3))[k])};
+    if (airySingleFilmFastAt(angle, film, substrate, r)) {
         // clampEnergy's result: the kernel already returns Rs, Rp ∈ [0, 1] and Ts, Tp ∈ [0, 1],
         // so only T ≤ 1 − R remains (this runs per wavelength per evaluation).
         r.Ts = std::min(r.Ts, 1.0 - r.Rs);
         r.Tp = std::min(r.Tp, 1.0 - r.Rp);
         return r;
     }
+    return exactFallback(k, cosTheta, below);
+}
+
+FilmStackResult FilmCoating::exactFallback(int k, double cosTheta, bool below) const {
     const double inc = below ? substrate_[k].real() : extIor_;
     const complexd sub = below ? complexd(extIor_, 0.0) : substrate_[k];
-    return clampEnergy(filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(layers_ + k, 1), sub));
+    const Layer film{film_[k], thickness_};
+    return clampEnergy(filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
+}
+
+void FilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
+    const int pad = airyStride_;
+    alignas(32) double s2[kMaxWavelengths], y0s[kMaxWavelengths], y0p[kMaxWavelengths];
+    AiryAngle angle;
+    double angleIor = -1;  // angle terms per distinct index of the incident medium
+    for (int k = 0; k < pad; ++k) {
+        const double inc = below ? substrate_[std::min(k, n_ - 1)].real() : extIor_;
+        if (inc != angleIor) {
+            angleIor = inc;
+            angle = airyAngle(cosTheta, inc);
+        }
+        s2[k] = angle.s2;
+        y0s[k] = angle.y0s;
+        y0p[k] = angle.y0p;
+    }
+    const int sub = below ? kExtRe : kN2Re;
+    const AiryBatchInput in{airyArray(kN1Re), airyArray(kN1Im), airyArray(kInv1Re), airyArray(kInv1Im),
+                            airyArray(kK0d), airyArray(AiryArray(sub)), airyArray(AiryArray(sub + 1)),
+                            airyArray(AiryArray(sub + 2)), airyArray(AiryArray(sub + 3)), s2, y0s, y0p};
+    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+    const uint32_t declined = airySingleFilmBatch(in, n_, AiryBatchOutput{Rs, Rp, Ts, Tp});
+    for (int k = 0; k < n_; ++k) {
+        FilmStackResult r{Rs[k], Rp[k], std::min(Ts[k], 1.0 - Rs[k]), std::min(Tp[k], 1.0 - Rp[k])};  // as exactAt
+        if (declined >> k & 1) r = exactFallback(k, cosTheta, below);
+        R[k] = float(r.R());
+        if (T) (*T)[k] = float(r.T());
+    }
 }
 
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
     if (airy_ && !belcourBarla_) {
-        const AiryAngle angle = airyAngle(cosTheta, extIor_);
-        for (int k = 0; k < n_; ++k) R[k] = float(exactAt(k, cosTheta, false, angle).R());
+        exactAll(cosTheta, false, R, nullptr);
         return R;
     }
     for (int k = 0; k < n_; ++k) {
@@ -317,12 +371,7 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
     if (airy_ && !belcourBarla_) {
-        const AiryAngle angle = airyAngle(cosTheta, extIor_);
-        for (int k = 0; k < n_; ++k) {
-            const FilmStackResult r = exactAt(k, cosTheta, false, angle);
-            R[k] = float(r.R());
-            T[k] = float(r.T());
-        }
+        exactAll(cosTheta, false, R, &T);
         return;
     }
     for (int k = 0; k < n_; ++k) {
@@ -340,14 +389,12 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
 void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
-    AiryAngle angle;
-    double angleIor = -1;  // the incident medium is the substrate: angle terms per distinct index
+    if (airy_) {
+        exactAll(cosTheta, true, R, &T);
+        return;
+    }
     for (int k = 0; k < n_; ++k) {
-        if (airy_ && substrate_[k].real() != angleIor) {
-            angleIor = substrate_[k].real();
-            angle = airyAngle(cosTheta, angleIor);
-        }
-        const FilmStackResult r = airy_ ? exactAt(k, cosTheta, true, angle) : stackRTFromBelow(k, cosTheta);
+        const FilmStackResult r = stackRTFromBelow(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
     }

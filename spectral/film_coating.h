@@ -12,6 +12,7 @@
 #include "core/properties.h"
 #include "core/texture.h"
 #include "materials/dispersion.h"
+#include "spectral/film_airy_batch.h"
 #include "spectral/film_stack.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
@@ -140,8 +141,11 @@ public:
 
 private:
     FilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
-    template <typename IorAt, typename LambdaAt>
-    void init(const FilmCoatingSpec& spec, Arena& arena, IorAt&& ior, LambdaAt&& lambda);
+    FilmStackResult exactFallback(int k, double cosTheta, bool below) const;  // transfer matrix
+    /// Builds the Airy arrays or the layer rows from lambda_, film_, substrate_ (set by the
+    /// constructors); extraIor(j, k) is the complex index of extra layer j at entry k.
+    template <typename ExtraIorAt>
+    void init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor);
 
     int n_ = 0, nExtra_ = 0, bounces_ = 1;
     FilmPhaseMode mode_ = FilmPhaseMode::Exact;
@@ -151,13 +155,18 @@ private:
     complexd film_[kMaxWavelengths];
     complexd substrate_[kMaxWavelengths];
     Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
-    /// Exact mode with a single film: the angle-independent Airy constants per entry (arena),
-    /// hoisted out of every evaluation (film_stack.h airySingleFilmFast); nullptr otherwise.
-    struct AiryEntry {
-        AiryFilmConstants film;
-        SquaredIndex substrate;
-    };
-    const AiryEntry* airy_ = nullptr;
+    /// Exact mode with a single film: the angle-independent Airy constants per entry (arena,
+    /// structure of arrays padded to kAiryLanes for spectral/film_airy_batch.h), hoisted out of every
+    /// evaluation; nullptr otherwise. Arrays: film ñ1² (re, im), 1/ñ1² (re, im), k0 d, substrate ñ2²
+    /// (re, im), 1/ñ2² (re, im), and the exterior's ñ0², 1/ñ0² repeated (the substrate of the
+    /// reversed stack, fromBelow).
+    enum AiryArray { kN1Re, kN1Im, kInv1Re, kInv1Im, kK0d, kN2Re, kN2Im, kInv2Re, kInv2Im,
+                     kExtRe, kExtIm, kExtInvRe, kExtInvIm, kAiryArrays };
+    const double* airy_ = nullptr;
+    int airyStride_ = 0;  // padded entry count: array a starts at airy_ + a·airyStride_
+    const double* airyArray(AiryArray a) const { return airy_ + a * airyStride_; }
+    /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
+    void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
     SquaredIndex extSq_;  // the exterior as the "substrate" of the reversed stack (fromBelow)
     const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;

@@ -12,8 +12,6 @@ namespace iris {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-
 enum class Pol { S, P };
 
 /// Tilted admittance used for polarisation `pol` (Macleod ch. 2): y_s = q, y_p = q/ñ² (the p form

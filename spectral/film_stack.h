@@ -22,6 +22,9 @@ namespace iris {
 
 using complexd = std::complex<double>;
 
+/// 2π in double precision (film phases k0 d = 2π d/λ).
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
 /// One homogeneous layer: complex index ñ = n + ik at the wavelength considered, thickness in nm.
 struct Layer {
     complexd ior;

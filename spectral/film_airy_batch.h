@@ -1,0 +1,37 @@
+// The exact single-film Airy kernel (spectral/film_airy.h) over all wavelengths of a path at once:
+// structure-of-arrays inputs, four wavelengths per SIMD group. FilmCoating (spectral/film_coating.cpp)
+// evaluates every reflectance / transmittance of a single exact film through it. Same formulation
+// and the same floating-point operations as airySingleFilmFastAt, lane by lane (docs/thin_film.md §8).
+#pragma once
+
+#include <cstdint>
+
+namespace iris {
+
+/// Wavelengths per SIMD group; every array of AiryBatchInput is padded to a multiple of it.
+constexpr int kAiryLanes = 4;
+constexpr int airyPadded(int n) { return (n + kAiryLanes - 1) / kAiryLanes * kAiryLanes; }
+
+/// Per-wavelength inputs (SoA, each array airyPadded(n) long; padding lanes hold any finite values,
+/// e.g. copies of the last entry). Film: ñ1², 1/ñ1², k0 d = 2π d/λ. Substrate (the medium below the
+/// film as seen from the incident side): ñ2², 1/ñ2². Incident medium: s² = (n0 sinθ0)² and the
+/// admittances y0s = n0 cosθ0, y0p = n0 cosθ0 / n0² (film_airy.h AiryAngle).
+struct AiryBatchInput {
+    const double *n1Re, *n1Im, *inv1Re, *inv1Im, *k0d;
+    const double *n2Re, *n2Im, *inv2Re, *inv2Im;
+    const double *s2, *y0s, *y0p;
+};
+
+/// Outputs (each array airyPadded(n) long): R and T for s and p, clamped as airySingleFilmFastAt
+/// clamps them (R ≤ 1, 0 ≤ T ≤ 1).
+struct AiryBatchOutput {
+    double *Rs, *Rp, *Ts, *Tp;
+};
+
+/// Evaluate entries [0, n), n ≤ 32. Returns a bit mask of the entries where the closed form declined
+/// (den vanishes or underflows: q1 = 0 exactly; or a non-finite result): the caller evaluates those
+/// with the transfer matrix, exactly where airySingleFilmFastAt returns false. Their outputs are
+/// unspecified. Tested lane by lane against airySingleFilmFastAt in tests/test_film_fast.cpp.
+uint32_t airySingleFilmBatch(const AiryBatchInput& in, int n, const AiryBatchOutput& out);
+
+}  // namespace iris
