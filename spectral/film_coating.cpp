@@ -326,30 +326,46 @@ FilmStackResult FilmCoating::exactFallback(int k, double cosTheta, bool below) c
 void FilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
     const int pad = airyStride_;
     alignas(32) double s2[kMaxWavelengths], y0s[kMaxWavelengths], y0p[kMaxWavelengths];
-    AiryAngle angle;
-    double angleIor = -1;  // angle terms per distinct index of the incident medium
-    for (int k = 0; k < pad; ++k) {
-        const double inc = below ? substrate_[std::min(k, n_ - 1)].real() : extIor_;
-        if (inc != angleIor) {
-            angleIor = inc;
-            angle = airyAngle(cosTheta, inc);
+    if (!below) {
+        const AiryAngle angle = airyAngle(cosTheta, extIor_);
+        for (int k = 0; k < pad; ++k) {
+            s2[k] = angle.s2;
+            y0s[k] = angle.y0s;
+            y0p[k] = angle.y0p;
         }
-        s2[k] = angle.s2;
-        y0s[k] = angle.y0s;
-        y0p[k] = angle.y0p;
+    } else {
+        AiryAngle angle;
+        double angleIor = -1;  // the incident medium is the substrate: angle terms per distinct index
+        for (int k = 0; k < pad; ++k) {
+            const double inc = substrate_[std::min(k, n_ - 1)].real();
+            if (inc != angleIor) {
+                angleIor = inc;
+                angle = airyAngle(cosTheta, inc);
+            }
+            s2[k] = angle.s2;
+            y0s[k] = angle.y0s;
+            y0p[k] = angle.y0p;
+        }
     }
     const int sub = below ? kExtRe : kN2Re;
     const AiryBatchInput in{airyArray(kN1Re), airyArray(kN1Im), airyArray(kInv1Re), airyArray(kInv1Im),
                             airyArray(kK0d), airyArray(AiryArray(sub)), airyArray(AiryArray(sub + 1)),
                             airyArray(AiryArray(sub + 2)), airyArray(AiryArray(sub + 3)), s2, y0s, y0p};
     alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
-    const uint32_t declined = airySingleFilmBatch(in, n_, AiryBatchOutput{Rs, Rp, Ts, Tp});
-    for (int k = 0; k < n_; ++k) {
-        FilmStackResult r{Rs[k], Rp[k], std::min(Ts[k], 1.0 - Rs[k]), std::min(Tp[k], 1.0 - Rp[k])};  // as exactAt
-        if (declined >> k & 1) r = exactFallback(k, cosTheta, below);
-        R[k] = float(r.R());
-        if (T) (*T)[k] = float(r.T());
+    uint32_t declined = airySingleFilmBatch(in, n_, AiryBatchOutput{Rs, Rp, Ts, Tp});
+    while (declined) {  // the rare entries the closed form declines: the transfer matrix (as exactAt)
+        const int k = __builtin_ctz(declined);
+        declined &= declined - 1;
+        const FilmStackResult r = exactFallback(k, cosTheta, below);
+        Rs[k] = r.Rs;
+        Rp[k] = r.Rp;
+        Ts[k] = r.Ts;
+        Tp[k] = r.Tp;
     }
+    // As exactAt: the kernel's R, T ∈ [0, 1], and T ≤ 1 − R (the fallback's values already satisfy it).
+    for (int k = 0; k < n_; ++k) R[k] = float(0.5 * (Rs[k] + Rp[k]));  // FilmStackResult::R()
+    if (T)
+        for (int k = 0; k < n_; ++k) (*T)[k] = float(0.5 * (std::min(Ts[k], 1.0 - Rs[k]) + std::min(Tp[k], 1.0 - Rp[k])));
 }
 
 SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
