@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "materials/fresnel.h"
+#include "spectral/film_airy_batch.h"
+#include "spectral/film_airy.h"
 #include "spectral/film_stack.h"
 #include "spectral/sampled_spectrum.h"
 
@@ -90,6 +92,39 @@ void BM_AiryFilm4Hoisted(benchmark::State& st) {
     st.SetItemsProcessed(st.iterations());
 }
 BENCHMARK(BM_AiryFilm4Hoisted);
+
+/// The batched kernel as FilmCoating calls it (spectral/film_airy_batch.h): the four wavelengths in
+/// one SIMD group, constants hoisted into SoA arrays, the angle terms per evaluation.
+void BM_AiryFilm4Batch(benchmark::State& st) {
+    alignas(32) double v[9][kN];
+    for (int i = 0; i < kN; ++i) {
+        const AiryFilmConstants f = airyFilmConstants(kLambda[i], kFilm);
+        const SquaredIndex s = squaredIndex(kMetal[i]);
+        const double x[9] = {f.n1sq.real(), f.n1sq.imag(), f.invN1sq.real(), f.invN1sq.imag(), f.k0d,
+                             s.sq.real(), s.sq.imag(), s.inv.real(), s.inv.imag()};
+        for (int a = 0; a < 9; ++a) v[a][i] = x[a];
+    }
+    float c = 0.3f;
+    for (auto _ : st) {
+        alignas(32) double s2[kN], y0s[kN], y0p[kN], Rs[kN], Rp[kN], Ts[kN], Tp[kN];
+        const AiryAngle angle = airyAngle(c, 1.0);
+        for (int i = 0; i < kN; ++i) {
+            s2[i] = angle.s2;
+            y0s[i] = angle.y0s;
+            y0p[i] = angle.y0p;
+        }
+        const AiryBatchInput in{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], s2, y0s, y0p};
+        const uint32_t declined = airySingleFilmBatch(in, kN, AiryBatchOutput{Rs, Rp, Ts, Tp});
+        float r[kN];
+        for (int i = 0; i < kN; ++i)
+            r[i] = declined >> i & 1 ? float(airySingleFilm(kLambda[i], c, 1.0, kFilm, kMetal[i]).R())
+                                     : float(0.5 * (Rs[i] + Rp[i]));
+        benchmark::DoNotOptimize(r);
+        c = nextCos(c);
+    }
+    st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_AiryFilm4Batch);
 
 /// Transfer matrix through `range(0)` layers over the conductor at 4 wavelengths.
 void BM_TransferMatrix4(benchmark::State& st) {
