@@ -232,17 +232,26 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& e
         double* row[kAiryArrays];
         for (int i = 0; i < kAiryArrays; ++i) row[i] = a + i * pad;
         const SquaredIndex ext = squaredIndex(complexd(extIor_, 0.0));
+        alignas(32) double fr[kMaxWavelengths], fi[kMaxWavelengths], sr[kMaxWavelengths], si[kMaxWavelengths],
+            lam[kMaxWavelengths];
         for (int k = 0; k < pad; ++k) {
             const int e = std::min(k, n_ - 1);  // padding lanes repeat the last entry
-            const double fr = film_[e].real(), fi = film_[e].imag(), sr = substrate_[e].real(), si = substrate_[e].imag();
-            const double n1r = fr * fr - fi * fi, n1i = fr * fi + fi * fr;  // ñ1² (cmul)
-            const double n2r = sr * sr - si * si, n2i = sr * si + si * sr;  // ñ2²
+            fr[k] = film_[e].real();
+            fi[k] = film_[e].imag();
+            sr[k] = substrate_[e].real();
+            si[k] = substrate_[e].imag();
+            lam[k] = lambda_[e];
+        }
+        const double d = thickness_;
+        for (int k = 0; k < pad; ++k) {  // branch-free: the compiler vectorises it
+            const double n1r = fr[k] * fr[k] - fi[k] * fi[k], n1i = fr[k] * fi[k] + fi[k] * fr[k];  // ñ1² (cmul)
+            const double n2r = sr[k] * sr[k] - si[k] * si[k], n2i = sr[k] * si[k] + si[k] * sr[k];  // ñ2²
             const double nn1 = n1r * n1r + n1i * n1i, nn2 = n2r * n2r + n2i * n2i;
             row[kN1Re][k] = n1r;
             row[kN1Im][k] = n1i;
             row[kInv1Re][k] = n1r / nn1;  // 1/z = conj(z)/|z|²
             row[kInv1Im][k] = -n1i / nn1;
-            row[kK0d][k] = kTwoPi / lambda_[e] * thickness_;  // k0 d = 2π d/λ
+            row[kK0d][k] = kTwoPi / lam[k] * d;  // k0 d = 2π d/λ
             row[kN2Re][k] = n2r;
             row[kN2Im][k] = n2i;
             row[kInv2Re][k] = n2r / nn2;
