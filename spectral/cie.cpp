@@ -16,6 +16,46 @@ float interpolate(const float* table, int count, float first, float step, float 
     return (1.0f - t) * table[i] + t * table[i + 1];
 }
 
+// interpolate() for many wavelengths, in lane loops: the table position of every lane
+// (vectorised), the two table reads per lane and table (scalar loads: baseline x86-64 has no
+// gather), the blend (vectorised). Each lane does the operations of interpolate() in the same
+// order, so the results are identical; one position serves x̄, ȳ and z̄ (same 1 nm grid).
+constexpr int kBlock = 32;  // lanes per pass (kMaxWavelengths, spectral/sampled_spectrum.h)
+
+struct TablePositions {
+    alignas(16) int index[kBlock];
+    alignas(16) float frac[kBlock];
+    alignas(16) float inside[kBlock];  // 1 inside the table, 0 outside (interpolate() returns 0)
+};
+
+template <int kFirst, int kStep, int kCount>
+void tablePositions(const float* lambda, int m, TablePositions& p) {
+    for (int j = 0; j < m; ++j) {
+        // As interpolate(): x = (λ − first) / step (the 1 nm tables: λ − first, as in xyzBar).
+        const float d = lambda[j] - float(kFirst);
+        const float x = kStep == 1 ? d : d / float(kStep);
+        const bool in = x >= 0.0f && x <= float(kCount - 1);
+        const float xc = in ? x : 0.0f;
+        const int i = std::min(int(xc), kCount - 2);
+        p.index[j] = i;
+        p.frac[j] = xc - float(i);
+        p.inside[j] = in ? 1.0f : 0.0f;
+    }
+}
+
+void blend(const float* table, int m, const TablePositions& p, float* out) {
+    alignas(16) float a[kBlock], b[kBlock];
+    for (int j = 0; j < m; ++j) {
+        a[j] = table[p.index[j]];
+        b[j] = table[p.index[j] + 1];
+    }
+    for (int j = 0; j < m; ++j) {
+        const float t = p.frac[j];
+        const float v = (1.0f - t) * a[j] + t * b[j];
+        out[j] = p.inside[j] != 0.0f ? v : 0.0f;
+    }
+}
+
 double computeYIntegral() {
     double s = 0.0;
     for (int i = 0; i < kCmfCount; ++i) s += kYBar[i];  // × 1 nm
@@ -37,6 +77,26 @@ vec3 xyzBar(float lambda) {
 }
 
 float d65(float lambda) { return interpolate(kD65, kD65Count, float(kD65First), float(kD65Step), lambda); }
+
+void d65Lanes(const float* lambda, int count, float* out) {
+    TablePositions p;
+    for (int j0 = 0; j0 < count; j0 += kBlock) {
+        const int m = std::min(kBlock, count - j0);
+        tablePositions<kD65First, kD65Step, kD65Count>(lambda + j0, m, p);
+        blend(kD65, m, p, out + j0);
+    }
+}
+
+void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut) {
+    TablePositions p;
+    for (int j0 = 0; j0 < count; j0 += kBlock) {
+        const int m = std::min(kBlock, count - j0);
+        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, m, p);
+        blend(kXBar, m, p, xOut + j0);
+        blend(kYBar, m, p, yOut + j0);
+        blend(kZBar, m, p, zOut + j0);
+    }
+}
 
 double yIntegral() {
     static const double v = computeYIntegral();
