@@ -56,6 +56,23 @@ void blend(const float* table, int m, const TablePositions& p, float* out) {
     }
 }
 
+// x̄, ȳ, z̄ of one 1 nm node as one 4-float vector (GCC/Clang vector extension: element-wise IEEE
+// operations, lowered to SSE2 here and to scalar code where there is no SIMD), so that a lane's
+// two nodes are two aligned loads and its three blends one vector blend (weightedXyzBarSum). A
+// plain loop over the components is vectorised by GCC across wavelengths instead, with emulated
+// gathers, which costs more than the scalar code.
+typedef float Float4 __attribute__((vector_size(16)));
+struct CmfRows {
+    Float4 row[kCmfCount];  // x̄, ȳ, z̄, 0
+    CmfRows() {
+        for (int i = 0; i < kCmfCount; ++i) row[i] = Float4{kXBar[i], kYBar[i], kZBar[i], 0.0f};
+    }
+};
+const CmfRows& cmfRows() {
+    static const CmfRows rows;  // built on first use (safe from other static initialisers too)
+    return rows;
+}
+
 double computeYIntegral() {
     double s = 0.0;
     for (int i = 0; i < kCmfCount; ++i) s += kYBar[i];  // × 1 nm
@@ -96,6 +113,31 @@ void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float
         blend(kYBar, m, p, yOut + j0);
         blend(kZBar, m, p, zOut + j0);
     }
+}
+
+vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
+    Float4 sum = {0.0f, 0.0f, 0.0f, 0.0f};
+    const CmfRows& rows = cmfRows();
+    TablePositions p;
+    alignas(16) float oneMinusT[kBlock], wIn[kBlock];
+    for (int j0 = 0; j0 < n; j0 += kBlock) {
+        const int m = std::min(kBlock, n - j0), padded = (m + 3) & ~3;
+        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, padded, p);
+        // The term of xyzBar's plain loop is w · (inside ? v : 0) with v the blend. Here it is
+        // (w · inside) · v: for inside = 1 the same product; for inside = 0 both are w · 0 (±0, or
+        // NaN for an infinite w), because v is finite and ≥ 0 (at the clamped node 0, t = 0).
+        for (int j = 0; j < padded; ++j) {
+            oneMinusT[j] = 1.0f - p.frac[j];
+            wIn[j] = weight[j0 + j] * p.inside[j];
+        }
+        for (int j = 0; j < m; ++j) {
+            const Float4 a = rows.row[p.index[j]];
+            const Float4 b = rows.row[p.index[j] + 1];
+            // As xyzBar per component, (1 − t)·a + t·b; the scalars are broadcast to all four.
+            sum += wIn[j] * (oneMinusT[j] * a + p.frac[j] * b);
+        }
+    }
+    return vec3(sum[0], sum[1], sum[2]);
 }
 
 double yIntegral() {

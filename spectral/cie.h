@@ -24,6 +24,12 @@ float d65(float lambda);
 void d65Lanes(const float* lambda, int count, float* out);
 void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut);
 
+/// Σ_{j<n} weight[j] · xyzBar(lambda[j]), summed in the order j = 0, 1, … per component: the
+/// value of that plain loop, bit for bit (tests/test_spectral_lanes.cpp). lambda and weight must
+/// be readable up to n rounded up to a multiple of 4 (lanes of SampledWavelengths and
+/// SampledSpectrum are).
+vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n);
+
 /// ∫ ȳ(λ) dλ over the table (1 nm rectangle rule on the 1 nm samples, in nm): ≈ 106.857.
 /// Y is normalised by it: Y = ∫ L ȳ dλ / ∫ ȳ dλ, so a constant spectrum 1 has Y = 1.
 double yIntegral();

@@ -3,6 +3,7 @@
 // stated bound where the float logarithm replaced libm's double log.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -10,6 +11,8 @@
 
 #include "core/rng.h"
 #include "spectral/cie.h"
+#include "spectral/d65_spectrum.h"
+#include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/rgb_spectrum.h"
 #include "spectral/rgb_upsampling.h"
 #include "spectral/spectrum_factory.h"
@@ -246,4 +249,69 @@ TEST(SpectralLanes, RgbSpectrumSampleEqualsEvalAtEveryLane) {
             }
         }
     }
+}
+
+TEST(SpectralLanes, WeightedCmfSumEqualsThePlainLoop) {
+    Pcg32 rng(2, 7);
+    for (int n = 1; n <= 70; ++n) {
+        std::vector<float> l(size_t(n + 3) & ~size_t(3)), w(l.size());
+        for (int rep = 0; rep < 50; ++rep) {
+            for (size_t j = 0; j < l.size(); ++j) {
+                l[j] = rep % 7 == 0 && j % 5 == 0 ? 340.0f + 510.0f * rng.uniform() : 360.0f + 470.0f * rng.uniform();
+                w[j] = rng.uniform() < 0.1f ? 0.0f : logUniform(rng, 1e-3f, 1e3f, true);
+            }
+            vec3 ref(0.0f);
+            for (int j = 0; j < n; ++j) ref += w[j] * cie::xyzBar(l[j]);
+            const vec3 got = cie::weightedXyzBarSum(l.data(), w.data(), n);
+            ASSERT_EQ(got.x, ref.x) << n;
+            ASSERT_EQ(got.y, ref.y) << n;
+            ASSERT_EQ(got.z, ref.z) << n;
+        }
+    }
+}
+
+TEST(SpectralLanes, PiecewiseLinearBucketLookupEqualsBinarySearch) {
+    // eval finds its interval from a bucket grid and a short walk; it must give exactly the value
+    // of the binary-search form it replaced, for irregular tables (clustered and sparse samples),
+    // at random wavelengths, at every sample and its float neighbours, and just inside the ends.
+    Pcg32 rng(13, 3);
+    for (int table = 0; table < 60; ++table) {
+        const int count = 2 + int(rng.uniform() * 80);
+        std::vector<float> l, v;
+        float x = 200.0f + 300.0f * rng.uniform();
+        for (int k = 0; k < count; ++k) {
+            l.push_back(x);
+            v.push_back(logUniform(rng, 1e-3f, 10.0f, true));
+            x += table % 3 == 0 ? logUniform(rng, 1e-3f, 200.0f, false) : 0.5f + 20.0f * rng.uniform();
+        }
+        const PiecewiseLinearSpectrum s(l, v, SpectrumKind::Unbounded);
+        auto reference = [&](float lambda) {
+            if (lambda <= l.front()) return v.front();
+            if (lambda >= l.back()) return v.back();
+            const size_t i = size_t(std::upper_bound(l.begin(), l.end(), lambda) - l.begin());
+            const float t = (lambda - l[i - 1]) / (l[i] - l[i - 1]);
+            return (1.0f - t) * v[i - 1] + t * v[i];
+        };
+        std::vector<float> probes;
+        for (int k = 0; k < 2000; ++k) probes.push_back(l.front() - 10.0f + (l.back() - l.front() + 20.0f) * rng.uniform());
+        for (float li : l)
+            for (float p : {std::nextafter(li, -INFINITY), li, std::nextafter(li, INFINITY)}) probes.push_back(p);
+        for (float p : probes) ASSERT_EQ(s.eval(p), reference(p)) << table << " " << p;
+    }
+    const PiecewiseLinearSpectrum s({400, 500}, {1, 2}, SpectrumKind::Unbounded);
+    EXPECT_TRUE(std::isnan(s.eval(std::numeric_limits<float>::quiet_NaN())));
+    EXPECT_EQ(s.eval(INFINITY), 2.0f);
+    EXPECT_EQ(s.eval(-INFINITY), 1.0f);
+}
+
+TEST(SpectralLanes, D65SpectrumSampleEqualsEval) {
+    const D65Spectrum d(2.5f);
+    Pcg32 rng(1, 1);
+    for (int n = 1; n <= kMaxWavelengths; ++n) {
+        const SampledWavelengths wl = SampledWavelengths::sampleVisible(rng.uniform(), n);
+        const SampledSpectrum v = d.sample(wl);
+        for (int i = 0; i < n; ++i) ASSERT_EQ(v[i], d.eval(wl.lambda(i)));
+    }
+    const SampledSpectrum rgb = d.sample(SampledWavelengths::rgb(vec3(645, 525, 445)));
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(rgb[c], d.rgbValue()[c]);
 }
