@@ -1,6 +1,7 @@
 #include "spectral/cie.h"
 
 #include "spectral/cie_tables.h"
+#include "spectral/lane_dispatch.h"
 
 namespace iris::cie {
 
@@ -29,7 +30,7 @@ struct TablePositions {
 };
 
 template <int kFirst, int kStep, int kCount>
-void tablePositions(const float* lambda, int m, TablePositions& p) {
+IRIS_LANES_INLINE void tablePositions(const float* lambda, int m, TablePositions& p) {
     for (int j = 0; j < m; ++j) {
         // As interpolate(): x = (λ − first) / step (the 1 nm tables: λ − first, as in xyzBar).
         const float d = lambda[j] - float(kFirst);
@@ -43,7 +44,7 @@ void tablePositions(const float* lambda, int m, TablePositions& p) {
     }
 }
 
-void blend(const float* table, int m, const TablePositions& p, float* out) {
+IRIS_LANES_INLINE void blend(const float* table, int m, const TablePositions& p, float* out) {
     alignas(16) float a[kBlock], b[kBlock];
     for (int j = 0; j < m; ++j) {
         a[j] = table[p.index[j]];
@@ -95,13 +96,24 @@ vec3 xyzBar(float lambda) {
 
 float d65(float lambda) { return interpolate(kD65, kD65Count, float(kD65First), float(kD65Step), lambda); }
 
-void d65Lanes(const float* lambda, int count, float* out) {
+namespace {
+IRIS_LANES_INLINE void d65LanesBody(const float* lambda, int count, float* out) {
     TablePositions p;
     for (int j0 = 0; j0 < count; j0 += kBlock) {
         const int m = std::min(kBlock, count - j0);
         tablePositions<kD65First, kD65Step, kD65Count>(lambda + j0, m, p);
         blend(kD65, m, p, out + j0);
     }
+}
+IRIS_LANES_AVX2 void d65LanesAvx2(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
+void d65LanesBaseline(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
+}  // namespace
+
+void d65Lanes(const float* lambda, int count, float* out) {
+    if (lanes::useAvx2())
+        d65LanesAvx2(lambda, count, out);
+    else
+        d65LanesBaseline(lambda, count, out);
 }
 
 void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut) {
@@ -115,7 +127,8 @@ void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float
     }
 }
 
-vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
+namespace {
+IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* weight, int n) {
     Float4 sum = {0.0f, 0.0f, 0.0f, 0.0f};
     const CmfRows& rows = cmfRows();
     TablePositions p;
@@ -138,6 +151,17 @@ vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
         }
     }
     return vec3(sum[0], sum[1], sum[2]);
+}
+IRIS_LANES_AVX2 vec3 weightedXyzBarSumAvx2(const float* lambda, const float* weight, int n) {
+    return weightedXyzBarSumBody(lambda, weight, n);
+}
+vec3 weightedXyzBarSumBaseline(const float* lambda, const float* weight, int n) {
+    return weightedXyzBarSumBody(lambda, weight, n);
+}
+}  // namespace
+
+vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
+    return lanes::useAvx2() ? weightedXyzBarSumAvx2(lambda, weight, n) : weightedXyzBarSumBaseline(lambda, weight, n);
 }
 
 double yIntegral() {

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "spectral/cie.h"
+#include "spectral/lane_dispatch.h"
 
 namespace iris {
 
@@ -35,7 +36,7 @@ const double kVisInvNorm = 1.0 / double(kVisNorm);
 struct VisibleSample {
     float lambda, pdf;
 };
-inline VisibleSample sampleVisibleAt(float u) {
+IRIS_LANES_INLINE VisibleSample sampleVisibleAt(float u) {
     const float t = std::clamp(kVisTanhMin + u * kVisA * kVisNorm, -0.99999994f, 0.99999994f);
     constexpr float kHalfInvA = float(0.5 / double(kVisA));
     const float lambda = kVisCenter + kHalfInvA * logPositive((1.0f + t) / (1.0f - t));
@@ -45,9 +46,25 @@ inline VisibleSample sampleVisibleAt(float u) {
 
 /// Primary sample of hero rotation i of n: (u + i/n) mod 1 (for u in [0, 1)), branch-free: the
 /// integer part of u + i/n is 0 or 1 for the real lanes, and up − 1 is exact for up in [1, 2).
-inline float rotatedSample(float u, int i, int n) {
+IRIS_LANES_INLINE float rotatedSample(float u, int i, int n) {
     const float up = u + float(i) / float(n);
     return up - float(int(up));
+}
+
+/// Every lane of sampleVisible, in the baseline and the AVX2 build (spectral/lane_dispatch.h).
+IRIS_LANES_INLINE void sampleVisibleLanesBody(float u, int n, float* lambda, float* pdf) {
+    const int padded = SampledSpectrum::paddedSize(n);
+    for (int i = 0; i < padded; ++i) {
+        const VisibleSample vs = sampleVisibleAt(rotatedSample(u, i, n));
+        lambda[i] = vs.lambda;
+        pdf[i] = vs.pdf;
+    }
+}
+IRIS_LANES_AVX2 void sampleVisibleLanesAvx2(float u, int n, float* lambda, float* pdf) {
+    sampleVisibleLanesBody(u, n, lambda, pdf);
+}
+void sampleVisibleLanesBaseline(float u, int n, float* lambda, float* pdf) {
+    sampleVisibleLanesBody(u, n, lambda, pdf);
 }
 
 /// Padding lanes: a valid wavelength, pdf 0 (SampledWavelengths::lambdas()).
@@ -65,13 +82,12 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
     SampledWavelengths wl;
     wl.n_ = n;
-    const int padded = SampledSpectrum::paddedSize(n);
-    for (int i = 0; i < padded; ++i) {
-        const VisibleSample vs = sampleVisibleAt(rotatedSample(u, i, n));
-        wl.lambda_[i] = vs.lambda;
-        wl.pdf_[i] = vs.pdf;
-    }
+    if (lanes::useAvx2())
+        sampleVisibleLanesAvx2(u, n, wl.lambda_, wl.pdf_);
+    else
+        sampleVisibleLanesBaseline(u, n, wl.lambda_, wl.pdf_);
     clearPadding(n, wl.lambda_, wl.pdf_);
+    const int padded = SampledSpectrum::paddedSize(n);
     cie::d65Lanes(wl.lambda_, padded, wl.d65_);
     return wl;
 }

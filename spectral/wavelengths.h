@@ -27,7 +27,7 @@ float sampleVisibleWavelength(float u);
 /// (Abramowitz & Stegun 4.1.27). Terms to s⁹/9: the first omitted term is below 2.3e-9 relative,
 /// far under float rounding; m − 1 is exact (Sterbenz). ln x = k ln 2 + ln m, ln 2 split into a
 /// float head and tail (Cody & Waite 1980) so that k ln 2 adds no error of its own.
-inline float logPositive(float x) {
+[[gnu::always_inline]] inline float logPositive(float x) {
     const int32_t bits = std::bit_cast<int32_t>(x);
     constexpr int32_t kSqrtHalfBits = 0x3f3504f3;  // bit pattern of √½ = 0.70710677f
     const int32_t k = (bits - kSqrtHalfBits) >> 23;  // arithmetic shift (C++20)

@@ -1,6 +1,19 @@
 #include "spectral/xyz.h"
 
+#include "spectral/lane_dispatch.h"
+
 namespace iris {
+
+namespace {
+// w = L/pdf, 0 where pdf = 0, for `padded` lanes; baseline and AVX2 builds (lane_dispatch.h).
+IRIS_LANES_INLINE void weightsBody(const float* l, const float* pdf, int padded, float* w) {
+    for (int i = 0; i < padded; ++i) w[i] = pdf[i] != 0.0f ? l[i] / pdf[i] : 0.0f;
+}
+IRIS_LANES_AVX2 void weightsAvx2(const float* l, const float* pdf, int padded, float* w) {
+    weightsBody(l, pdf, padded, w);
+}
+void weightsBaseline(const float* l, const float* pdf, int padded, float* w) { weightsBody(l, pdf, padded, w); }
+}  // namespace
 
 vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
     assert(!wl.isRGB());
@@ -15,7 +28,10 @@ vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
     const float* pdf = wl.pdfs();
     const float* l = L.lanes();
     alignas(16) float w[kMaxWavelengths];
-    for (int i = 0; i < padded; ++i) w[i] = pdf[i] != 0.0f ? l[i] / pdf[i] : 0.0f;
+    if (lanes::useAvx2())
+        weightsAvx2(l, pdf, padded, w);
+    else
+        weightsBaseline(l, pdf, padded, w);
     const vec3 sum = cie::weightedXyzBarSum(wl.lambdas(), w, n);
     static const float invYIntegral = float(1.0 / cie::yIntegral());
     return sum * (invYIntegral / float(n));

@@ -12,6 +12,7 @@
 #include "core/rng.h"
 #include "spectral/cie.h"
 #include "spectral/d65_spectrum.h"
+#include "spectral/lane_dispatch.h"
 #include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/rgb_spectrum.h"
 #include "spectral/rgb_upsampling.h"
@@ -314,4 +315,47 @@ TEST(SpectralLanes, D65SpectrumSampleEqualsEval) {
     }
     const SampledSpectrum rgb = d.sample(SampledWavelengths::rgb(vec3(645, 525, 445)));
     for (int c = 0; c < 3; ++c) EXPECT_EQ(rgb[c], d.rgbValue()[c]);
+}
+
+TEST(SpectralLanes, Avx2AndBaselineBuildsAreBitIdentical) {
+    // Every dispatched kernel (spectral/lane_dispatch.h) run in both builds on the same inputs.
+    // Where the CPU lacks AVX2 both runs take the baseline build and the test is vacuous.
+    std::printf("AVX2 build %s on this CPU\n", lanes::useAvx2() ? "available" : "not available");
+    struct Run {
+        std::vector<float> values;
+    };
+    const SpectrumPtr spectra[] = {makeRGBSpectrum(vec3(0.6f, 0.08f, 0.05f), SpectrumKind::Reflectance),
+                                   makeRGBSpectrum(vec3(0.35f, 0.38f, 0.45f), SpectrumKind::Illuminant),
+                                   makeRGBSpectrum(vec3(6.0f), SpectrumKind::Illuminant),
+                                   makeRGBSpectrum(vec3(3.0f, 0.2f, 1.0f), SpectrumKind::Unbounded)};
+    auto run = [&](bool baseline) {
+        lanes::forceBaseline = baseline;
+        Run r;
+        Pcg32 rng(77, 5);
+        for (int n = 1; n <= kMaxWavelengths; ++n) {
+            for (int rep = 0; rep < 100; ++rep) {
+                SampledWavelengths wl = SampledWavelengths::sampleVisible(rng.uniform(), n);
+                for (int i = 0; i < SampledSpectrum::paddedSize(n); ++i) {
+                    r.values.push_back(wl.lambdas()[i]);
+                    r.values.push_back(wl.pdfs()[i]);
+                    r.values.push_back(wl.d65Lanes()[i]);
+                }
+                for (const SpectrumPtr& s : spectra) {
+                    const SampledSpectrum v = s->sample(wl);
+                    for (int i = 0; i < n; ++i) r.values.push_back(v[i]);
+                }
+                if (rep % 4 == 0) wl.terminateSecondary();
+                SampledSpectrum L(n);
+                for (int i = 0; i < n; ++i) L[i] = logUniform(rng, 1e-3f, 1e3f, false);
+                const vec3 xyz = toXYZ(L, wl);
+                r.values.insert(r.values.end(), {xyz.x, xyz.y, xyz.z});
+            }
+        }
+        lanes::forceBaseline = false;
+        return r;
+    };
+    const Run a = run(false), b = run(true);
+    ASSERT_EQ(a.values.size(), b.values.size());
+    for (size_t k = 0; k < a.values.size(); ++k)
+        ASSERT_EQ(std::bit_cast<uint32_t>(a.values[k]), std::bit_cast<uint32_t>(b.values[k])) << k;
 }
