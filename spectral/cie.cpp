@@ -110,7 +110,7 @@ void d65LanesBaseline(const float* lambda, int count, float* out) { d65LanesBody
 }  // namespace
 
 void d65Lanes(const float* lambda, int count, float* out) {
-    if (lanes::useAvx2())
+    if (lanes::useAvx2For(count))
         d65LanesAvx2(lambda, count, out);
     else
         d65LanesBaseline(lambda, count, out);
@@ -161,7 +161,7 @@ vec3 weightedXyzBarSumBaseline(const float* lambda, const float* weight, int n) 
 }  // namespace
 
 vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
-    return lanes::useAvx2() ? weightedXyzBarSumAvx2(lambda, weight, n) : weightedXyzBarSumBaseline(lambda, weight, n);
+    return lanes::useAvx2For(n) ? weightedXyzBarSumAvx2(lambda, weight, n) : weightedXyzBarSumBaseline(lambda, weight, n);
 }
 
 double yIntegral() {

@@ -37,4 +37,8 @@ inline bool useAvx2() {
 #endif
 }
 
+/// useAvx2() for a loop over `lanes` floats: below 8 lanes (N ≤ 4) the 8-wide build only adds
+/// its set-up and remainder code (more instructions than the 4-wide baseline on the thin-film scene).
+inline bool useAvx2For(int lanes) { return lanes >= 8 && useAvx2(); }
+
 }  // namespace iris::lanes

@@ -99,7 +99,7 @@ SampledSpectrum RGBSpectrum::sample(const SampledWavelengths& wl) const {
         for (int i = 0; i < padded; ++i) v[i] = c;
         if (d65)
             for (int i = 0; i < padded; ++i) v[i] *= d65Scale * d65[i];
-    } else if (lanes::useAvx2()) {
+    } else if (lanes::useAvx2For(padded)) {
         sigmoidLanesAvx2(poly_, scale_, d65Scale, wl.lambdas(), d65, padded, s.lanes());
     } else {
         sigmoidLanesBaseline(poly_, scale_, d65Scale, wl.lambdas(), d65, padded, s.lanes());

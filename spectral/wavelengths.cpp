@@ -82,7 +82,7 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
     SampledWavelengths wl;
     wl.n_ = n;
-    if (lanes::useAvx2())
+    if (lanes::useAvx2For(SampledSpectrum::paddedSize(n)))
         sampleVisibleLanesAvx2(u, n, wl.lambda_, wl.pdf_);
     else
         sampleVisibleLanesBaseline(u, n, wl.lambda_, wl.pdf_);

@@ -28,7 +28,7 @@ vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
     const float* pdf = wl.pdfs();
     const float* l = L.lanes();
     alignas(16) float w[kMaxWavelengths];
-    if (lanes::useAvx2())
+    if (lanes::useAvx2For(padded))
         weightsAvx2(l, pdf, padded, w);
     else
         weightsBaseline(l, pdf, padded, w);
