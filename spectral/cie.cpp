@@ -1,6 +1,7 @@
 #include "spectral/cie.h"
 
 #include "spectral/cie_tables.h"
+#include "spectral/lane_dispatch.h"
 
 namespace iris::cie {
 
@@ -14,6 +15,63 @@ float interpolate(const float* table, int count, float first, float step, float 
     const int i = std::min(int(x), count - 2);
     const float t = x - float(i);
     return (1.0f - t) * table[i] + t * table[i + 1];
+}
+
+// interpolate() for many wavelengths, in lane loops: the table position of every lane
+// (vectorised), the two table reads per lane and table (scalar loads: baseline x86-64 has no
+// gather), the blend (vectorised). Each lane does the operations of interpolate() in the same
+// order, so the results are identical; one position serves x̄, ȳ and z̄ (same 1 nm grid).
+constexpr int kBlock = 32;  // lanes per pass (kMaxWavelengths, spectral/sampled_spectrum.h)
+
+struct TablePositions {
+    alignas(16) int index[kBlock];
+    alignas(16) float frac[kBlock];
+    alignas(16) float inside[kBlock];  // 1 inside the table, 0 outside (interpolate() returns 0)
+};
+
+template <int kFirst, int kStep, int kCount>
+IRIS_LANES_INLINE void tablePositions(const float* lambda, int m, TablePositions& p) {
+    for (int j = 0; j < m; ++j) {
+        // As interpolate(): x = (λ − first) / step (the 1 nm tables: λ − first, as in xyzBar).
+        const float d = lambda[j] - float(kFirst);
+        const float x = kStep == 1 ? d : d / float(kStep);
+        const bool in = x >= 0.0f && x <= float(kCount - 1);
+        const float xc = in ? x : 0.0f;
+        const int i = std::min(int(xc), kCount - 2);
+        p.index[j] = i;
+        p.frac[j] = xc - float(i);
+        p.inside[j] = in ? 1.0f : 0.0f;
+    }
+}
+
+IRIS_LANES_INLINE void blend(const float* table, int m, const TablePositions& p, float* out) {
+    alignas(16) float a[kBlock], b[kBlock];
+    for (int j = 0; j < m; ++j) {
+        a[j] = table[p.index[j]];
+        b[j] = table[p.index[j] + 1];
+    }
+    for (int j = 0; j < m; ++j) {
+        const float t = p.frac[j];
+        const float v = (1.0f - t) * a[j] + t * b[j];
+        out[j] = p.inside[j] != 0.0f ? v : 0.0f;
+    }
+}
+
+// x̄, ȳ, z̄ of one 1 nm node as one 4-float vector (GCC/Clang vector extension: element-wise IEEE
+// operations, lowered to SSE2 here and to scalar code where there is no SIMD), so that a lane's
+// two nodes are two aligned loads and its three blends one vector blend (weightedXyzBarSum). A
+// plain loop over the components is vectorised by GCC across wavelengths instead, with emulated
+// gathers, which costs more than the scalar code.
+typedef float Float4 __attribute__((vector_size(16)));
+struct CmfRows {
+    Float4 row[kCmfCount];  // x̄, ȳ, z̄, 0
+    CmfRows() {
+        for (int i = 0; i < kCmfCount; ++i) row[i] = Float4{kXBar[i], kYBar[i], kZBar[i], 0.0f};
+    }
+};
+const CmfRows& cmfRows() {
+    static const CmfRows rows;  // built on first use (safe from other static initialisers too)
+    return rows;
 }
 
 double computeYIntegral() {
@@ -37,6 +95,74 @@ vec3 xyzBar(float lambda) {
 }
 
 float d65(float lambda) { return interpolate(kD65, kD65Count, float(kD65First), float(kD65Step), lambda); }
+
+namespace {
+IRIS_LANES_INLINE void d65LanesBody(const float* lambda, int count, float* out) {
+    TablePositions p;
+    for (int j0 = 0; j0 < count; j0 += kBlock) {
+        const int m = std::min(kBlock, count - j0);
+        tablePositions<kD65First, kD65Step, kD65Count>(lambda + j0, m, p);
+        blend(kD65, m, p, out + j0);
+    }
+}
+IRIS_LANES_AVX2 void d65LanesAvx2(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
+void d65LanesBaseline(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
+}  // namespace
+
+void d65Lanes(const float* lambda, int count, float* out) {
+    if (lanes::useAvx2For(count))
+        d65LanesAvx2(lambda, count, out);
+    else
+        d65LanesBaseline(lambda, count, out);
+}
+
+void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut) {
+    TablePositions p;
+    for (int j0 = 0; j0 < count; j0 += kBlock) {
+        const int m = std::min(kBlock, count - j0);
+        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, m, p);
+        blend(kXBar, m, p, xOut + j0);
+        blend(kYBar, m, p, yOut + j0);
+        blend(kZBar, m, p, zOut + j0);
+    }
+}
+
+namespace {
+IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* weight, int n) {
+    Float4 sum = {0.0f, 0.0f, 0.0f, 0.0f};
+    const CmfRows& rows = cmfRows();
+    TablePositions p;
+    alignas(16) float oneMinusT[kBlock], wIn[kBlock];
+    for (int j0 = 0; j0 < n; j0 += kBlock) {
+        const int m = std::min(kBlock, n - j0), padded = (m + 3) & ~3;
+        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, padded, p);
+        // The term of xyzBar's plain loop is w · (inside ? v : 0) with v the blend. Here it is
+        // (w · inside) · v: for inside = 1 the same product; for inside = 0 both are w · 0 (±0, or
+        // NaN for an infinite w), because v is finite and ≥ 0 (at the clamped node 0, t = 0).
+        for (int j = 0; j < padded; ++j) {
+            oneMinusT[j] = 1.0f - p.frac[j];
+            wIn[j] = weight[j0 + j] * p.inside[j];
+        }
+        for (int j = 0; j < m; ++j) {
+            const Float4 a = rows.row[p.index[j]];
+            const Float4 b = rows.row[p.index[j] + 1];
+            // As xyzBar per component, (1 − t)·a + t·b; the scalars are broadcast to all four.
+            sum += wIn[j] * (oneMinusT[j] * a + p.frac[j] * b);
+        }
+    }
+    return vec3(sum[0], sum[1], sum[2]);
+}
+IRIS_LANES_AVX2 vec3 weightedXyzBarSumAvx2(const float* lambda, const float* weight, int n) {
+    return weightedXyzBarSumBody(lambda, weight, n);
+}
+vec3 weightedXyzBarSumBaseline(const float* lambda, const float* weight, int n) {
+    return weightedXyzBarSumBody(lambda, weight, n);
+}
+}  // namespace
+
+vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
+    return lanes::useAvx2For(n) ? weightedXyzBarSumAvx2(lambda, weight, n) : weightedXyzBarSumBaseline(lambda, weight, n);
+}
 
 double yIntegral() {
     static const double v = computeYIntegral();

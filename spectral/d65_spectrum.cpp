@@ -18,4 +18,13 @@ D65Spectrum::D65Spectrum(float scale) : Spectrum(SpectrumKind::Illuminant) {
 
 float D65Spectrum::eval(float lambda) const { return k_ * cie::d65(lambda); }
 
+SampledSpectrum D65Spectrum::sample(const SampledWavelengths& wl) const {
+    if (wl.isRGB()) return Spectrum::sample(wl);  // the RGB projection, as for every illuminant
+    SampledSpectrum s(wl.size());
+    const float* d65 = wl.d65Lanes();
+    float* v = s.lanes();
+    for (int i = 0; i < SampledSpectrum::paddedSize(wl.size()); ++i) v[i] = k_ * d65[i];
+    return s;
+}
+
 }  // namespace iris

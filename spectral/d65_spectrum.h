@@ -9,6 +9,8 @@ class D65Spectrum final : public Spectrum {
 public:
     explicit D65Spectrum(float scale = 1.0f);
     float eval(float lambda) const override;
+    /// eval at the path's wavelengths from the D65 values cached with them (the same values).
+    SampledSpectrum sample(const SampledWavelengths& wl) const override;
     float maxValue() const override { return max_; }
     vec3 rgbValue() const override { return rgb_; }
 

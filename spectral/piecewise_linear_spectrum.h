@@ -2,6 +2,7 @@
 // outside the table (measured data: .spd files, <spectrum value="λ:v, ..."/>).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "spectral/spectrum.h"
@@ -21,7 +22,14 @@ public:
     const std::vector<float>& values() const { return values_; }
 
 private:
+    /// Index of the first sample strictly above lambda (std::upper_bound), for lambda inside
+    /// (front, back): a uniform bucket grid over the table gives a start index, from which a short
+    /// walk finds the same index as the binary search (tests/test_spectra.cpp compares them).
+    size_t upperIndex(float lambda) const;
+
     std::vector<float> lambdas_, values_;
+    std::vector<uint32_t> bucketStart_;  // upper_bound of each bucket's lower edge
+    float bucketScale_ = 0;              // buckets per nm
     float max_ = 0;
     vec3 rgb_{0.0f};
 };

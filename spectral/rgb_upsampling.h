@@ -13,12 +13,18 @@ namespace iris {
 struct SigmoidPolynomial {
     float c0 = 0, c1 = 0, c2 = 0;  // coefficients in t = (λ − 360) / 470
 
-    static float sigmoid(float x) {
-        if (std::isinf(x)) return x > 0 ? 1.0f : 0.0f;
+    /// S(x) (paper eq. 4). x is clamped to ±2^63 first: from |x| = 2^64 on, x² overflows and the
+    /// formula gave ½ instead of 1 or 0 (by sign). At ±2^63 it gives exactly 1 or 0 (x² = 2^126 and
+    /// its square root are exact), which is S(x) rounded to float for x ≥ 2^63 and what the float
+    /// formula gives (cancellation) for x ≤ −2^63. Infinities give 1 / 0, NaN stays NaN, and for
+    /// |x| < 2^63 nothing changes. Branch-free, so lane loops over wavelengths vectorise.
+    [[gnu::always_inline]] static float sigmoid(float x) {
+        constexpr float kBig = 9.223372036854775808e18f;  // 2^63
+        x = std::clamp(x, -kBig, kBig);
         return 0.5f + x / (2.0f * std::sqrt(1.0f + x * x));
     }
-    static float normalisedWavelength(float lambda) { return (lambda - 360.0f) * (1.0f / 470.0f); }
-    float operator()(float lambda) const {
+    [[gnu::always_inline]] static float normalisedWavelength(float lambda) { return (lambda - 360.0f) * (1.0f / 470.0f); }
+    [[gnu::always_inline]] float operator()(float lambda) const {
         const float t = normalisedWavelength(lambda);
         return sigmoid((c0 * t + c1) * t + c2);
     }

@@ -115,8 +115,14 @@ public:
         return map(a, [](float x) { return std::max(0.0f, x); });
     }
 
-private:
-    int padded() const { return (n_ + kLanes - 1) & ~(kLanes - 1); }
+    /// n rounded up to a multiple of kLanes: the lanes that forLanes / fromLanes visit.
+    static constexpr int paddedSize(int n) { return (n + kLanes - 1) & ~(kLanes - 1); }
+    int padded() const { return paddedSize(n_); }
+    /// The lane storage (16-byte aligned, kMaxWavelengths long), for loops over all padded lanes
+    /// outside this class (spectral/wavelengths.cpp, rgb_spectrum.cpp, xyz.cpp).
+    float* lanes() { return v_; }
+    const float* lanes() const { return v_; }
+
     /// f(j) for every lane j below `padded`, in fixed groups of kLanes (the SIMD-friendly loop).
     template <typename F>
     static void forLanes(int padded, F&& f) {
@@ -131,6 +137,8 @@ private:
         forLanes(r.padded(), [&](int j) { r.v_[j] = f(j); });
         return r;
     }
+
+private:
     int n_ = 0;
     alignas(16) float v_[kMaxWavelengths];
 };

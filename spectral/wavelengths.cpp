@@ -1,6 +1,8 @@
 #include "spectral/wavelengths.h"
 
 #include "core/error.h"
+#include "spectral/cie.h"
+#include "spectral/lane_dispatch.h"
 
 namespace iris {
 
@@ -24,21 +26,53 @@ namespace {
 const float kVisTanhMin = std::tanh(kVisA * (kLambdaMin - kVisCenter));
 const double kVisInvNorm = 1.0 / double(kVisNorm);
 
+/// Inverse-CDF sample of the visible pdf and its density. Invert F(λ) = (tanh(a(λ−c)) −
+/// tanh(a(λmin−c))) / (a·norm) for t = tanh(a(λ−c)); then λ = c + atanh(t)/a with
+/// atanh t = ½ ln((1 + t)/(1 − t)), the logarithm by logPositive (float; λ differs from the
+/// double-precision libm form by about an ulp of λ, tests/test_wavelengths.cpp), and, because
+/// 1/cosh²x = 1 − tanh²x, the density is p = (1 − t²)/norm without another exp: it is
+/// visibleWavelengthPdf at the unrounded λ (tests/test_wavelengths.cpp compares the two).
+/// Inline and branch-free: sampleVisible runs it over all lanes in one vectorised loop.
 struct VisibleSample {
     float lambda, pdf;
 };
-
-/// Inverse-CDF sample of the visible pdf and its density. Invert F(λ) = (tanh(a(λ−c)) −
-/// tanh(a(λmin−c))) / (a·norm) for t = tanh(a(λ−c)); then λ = c + atanh(t)/a with
-/// atanh t = ½ ln((1 + t)/(1 − t)) (in double: more accurate than atanhf's log1pf, and cheaper), and,
-/// because 1/cosh²x = 1 − tanh²x, the density is p = (1 − t²)/norm without another exp: it is
-/// visibleWavelengthPdf at the unrounded λ (tests/test_wavelengths.cpp compares the two).
-VisibleSample sampleVisibleAt(float u) {
+IRIS_LANES_INLINE VisibleSample sampleVisibleAt(float u) {
     const float t = std::clamp(kVisTanhMin + u * kVisA * kVisNorm, -0.99999994f, 0.99999994f);
+    constexpr float kHalfInvA = float(0.5 / double(kVisA));
+    const float lambda = kVisCenter + kHalfInvA * logPositive((1.0f + t) / (1.0f - t));
     const double td = t;
-    constexpr double kHalfInvA = 0.5 / double(kVisA);
-    const float lambda = float(double(kVisCenter) + kHalfInvA * std::log((1.0 + td) / (1.0 - td)));
     return {std::clamp(lambda, kLambdaMin, kLambdaMax), float((1.0 - td * td) * kVisInvNorm)};
+}
+
+/// Primary sample of hero rotation i of n: (u + i/n) mod 1 (for u in [0, 1)), branch-free: the
+/// integer part of u + i/n is 0 or 1 for the real lanes, and up − 1 is exact for up in [1, 2).
+IRIS_LANES_INLINE float rotatedSample(float u, int i, int n) {
+    const float up = u + float(i) / float(n);
+    return up - float(int(up));
+}
+
+/// Every lane of sampleVisible, in the baseline and the AVX2 build (spectral/lane_dispatch.h).
+IRIS_LANES_INLINE void sampleVisibleLanesBody(float u, int n, float* lambda, float* pdf) {
+    const int padded = SampledSpectrum::paddedSize(n);
+    for (int i = 0; i < padded; ++i) {
+        const VisibleSample vs = sampleVisibleAt(rotatedSample(u, i, n));
+        lambda[i] = vs.lambda;
+        pdf[i] = vs.pdf;
+    }
+}
+IRIS_LANES_AVX2 void sampleVisibleLanesAvx2(float u, int n, float* lambda, float* pdf) {
+    sampleVisibleLanesBody(u, n, lambda, pdf);
+}
+void sampleVisibleLanesBaseline(float u, int n, float* lambda, float* pdf) {
+    sampleVisibleLanesBody(u, n, lambda, pdf);
+}
+
+/// Padding lanes: a valid wavelength, pdf 0 (SampledWavelengths::lambdas()).
+void clearPadding(int n, float* lambda, float* pdf) {
+    for (int i = n; i < SampledSpectrum::paddedSize(n); ++i) {
+        lambda[i] = kLambdaMin;
+        pdf[i] = 0.0f;
+    }
 }
 }  // namespace
 
@@ -48,13 +82,13 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
     SampledWavelengths wl;
     wl.n_ = n;
-    for (int i = 0; i < n; ++i) {
-        float up = u + float(i) / n;
-        if (up >= 1.0f) up -= 1.0f;
-        const VisibleSample vs = sampleVisibleAt(up);
-        wl.lambda_[i] = vs.lambda;
-        wl.pdf_[i] = vs.pdf;
-    }
+    if (lanes::useAvx2For(SampledSpectrum::paddedSize(n)))
+        sampleVisibleLanesAvx2(u, n, wl.lambda_, wl.pdf_);
+    else
+        sampleVisibleLanesBaseline(u, n, wl.lambda_, wl.pdf_);
+    clearPadding(n, wl.lambda_, wl.pdf_);
+    const int padded = SampledSpectrum::paddedSize(n);
+    cie::d65Lanes(wl.lambda_, padded, wl.d65_);
     return wl;
 }
 
@@ -63,12 +97,13 @@ SampledWavelengths SampledWavelengths::sampleUniform(float u, int n) {
     SampledWavelengths wl;
     wl.n_ = n;
     const float range = kLambdaMax - kLambdaMin;
-    for (int i = 0; i < n; ++i) {
-        float up = u + float(i) / n;
-        if (up >= 1.0f) up -= 1.0f;
-        wl.lambda_[i] = kLambdaMin + up * range;
+    const int padded = SampledSpectrum::paddedSize(n);
+    for (int i = 0; i < padded; ++i) {
+        wl.lambda_[i] = kLambdaMin + rotatedSample(u, i, n) * range;
         wl.pdf_[i] = 1.0f / range;
     }
+    clearPadding(n, wl.lambda_, wl.pdf_);
+    cie::d65Lanes(wl.lambda_, padded, wl.d65_);
     return wl;
 }
 
@@ -80,6 +115,8 @@ SampledWavelengths SampledWavelengths::rgb(const vec3& channelLambdas) {
         wl.lambda_[i] = channelLambdas[i];
         wl.pdf_[i] = 1.0f;
     }
+    clearPadding(3, wl.lambda_, wl.pdf_);
+    for (int i = 0; i < SampledSpectrum::paddedSize(3); ++i) wl.d65_[i] = 0.0f;
     return wl;
 }
 

@@ -1,18 +1,38 @@
 #include "spectral/xyz.h"
 
+#include "spectral/lane_dispatch.h"
+
 namespace iris {
+
+namespace {
+// w = L/pdf, 0 where pdf = 0, for `padded` lanes; baseline and AVX2 builds (lane_dispatch.h).
+IRIS_LANES_INLINE void weightsBody(const float* l, const float* pdf, int padded, float* w) {
+    for (int i = 0; i < padded; ++i) w[i] = pdf[i] != 0.0f ? l[i] / pdf[i] : 0.0f;
+}
+IRIS_LANES_AVX2 void weightsAvx2(const float* l, const float* pdf, int padded, float* w) {
+    weightsBody(l, pdf, padded, w);
+}
+void weightsBaseline(const float* l, const float* pdf, int padded, float* w) { weightsBody(l, pdf, padded, w); }
+}  // namespace
 
 vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
     assert(!wl.isRGB());
     // Monte Carlo estimate of ∫ L(λ) cmf(λ) dλ with N correlated (hero) samples, then divided
     // by ∫ȳ dλ (docs/conventions.md, "Spectral and colour conventions").
-    vec3 sum(0.0f);
+    // Lane loops over the padded length (vectorised): the weights L/pdf, 0 where the pdf is 0
+    // (terminated secondaries, and the padding lanes, whose pdf is 0 and whose L is not read);
+    // then the CMF-weighted sum in wavelength order, so that the result is that of the plain loop
+    // that skips zero-pdf entries (a skipped entry adds w·cmf = +0 here).
     const int n = wl.size();
-    for (int i = 0; i < n; ++i) {
-        const float pdf = wl.pdf(i);
-        if (pdf == 0.0f) continue;
-        sum += (L[i] / pdf) * cie::xyzBar(wl.lambda(i));
-    }
+    const int padded = SampledSpectrum::paddedSize(n);
+    const float* pdf = wl.pdfs();
+    const float* l = L.lanes();
+    alignas(16) float w[kMaxWavelengths];
+    if (lanes::useAvx2For(padded))
+        weightsAvx2(l, pdf, padded, w);
+    else
+        weightsBaseline(l, pdf, padded, w);
+    const vec3 sum = cie::weightedXyzBarSum(wl.lambdas(), w, n);
     static const float invYIntegral = float(1.0 / cie::yIntegral());
     return sum * (invYIntegral / float(n));
 }
