@@ -3,53 +3,54 @@
 #include <cmath>
 #include <cstring>
 
+#include "spectral/lane_dispatch.h"
+
 namespace iris {
 
 namespace {
 
 // GCC/Clang vector extensions: four doubles, operated on element-wise. The baseline x86-64 build
-// lowers them to pairs of SSE2 instructions; the AVX2 clone of airySingleFilmBatch (target_clones
-// below) to single 256-bit ones. Only IEEE add, sub, mul, div and sqrt (correctly rounded, and no
-// FMA contraction: neither clone enables FMA) appear, so every lane computes exactly what the scalar
-// airySingleFilmFastAt computes, on either clone.
+// lowers them to pairs of SSE2 instructions; the AVX2 build (spectral/lane_dispatch.h, chosen at run
+// time) to single 256-bit ones. Only IEEE add, sub, mul, div and sqrt (correctly rounded, and no
+// FMA contraction: neither build enables FMA) appear, so every lane computes exactly what the scalar
+// airySingleFilmFastAt computes, in either build.
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4i __attribute__((vector_size(32)));
 static_assert(kAiryLanes == 4);
-// Everything below is inlined into each clone, so that each is compiled for its own target.
-#define IRIS_LANE_INLINE inline __attribute__((always_inline))
+// Everything below is inlined into each build, so that each is compiled for its own target.
 
-IRIS_LANE_INLINE v4d load(const double* p) {
+IRIS_LANES_INLINE v4d load(const double* p) {
     v4d v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-IRIS_LANE_INLINE void store(double* p, v4d v) { std::memcpy(p, &v, sizeof v); }
-IRIS_LANE_INLINE v4d splat(double x) { return v4d{x, x, x, x}; }
-IRIS_LANE_INLINE v4d sel(v4i m, v4d a, v4d b) { return m ? a : b; }
-IRIS_LANE_INLINE v4d vsqrt(v4d a) {
+IRIS_LANES_INLINE void store(double* p, v4d v) { std::memcpy(p, &v, sizeof v); }
+IRIS_LANES_INLINE v4d splat(double x) { return v4d{x, x, x, x}; }
+IRIS_LANES_INLINE v4d sel(v4i m, v4d a, v4d b) { return m ? a : b; }
+IRIS_LANES_INLINE v4d vsqrt(v4d a) {
     v4d r;
     for (int i = 0; i < 4; ++i) r[i] = __builtin_sqrt(a[i]);  // one sqrtpd with -fno-math-errno
     return r;
 }
-IRIS_LANE_INLINE v4d vabs(v4d a) { return (v4d)((v4i)a & 0x7fffffffffffffffLL); }
-IRIS_LANE_INLINE v4d vcopysign(v4d mag, v4d sgn) {
+IRIS_LANES_INLINE v4d vabs(v4d a) { return (v4d)((v4i)a & 0x7fffffffffffffffLL); }
+IRIS_LANES_INLINE v4d vcopysign(v4d mag, v4d sgn) {
     return (v4d)(((v4i)mag & 0x7fffffffffffffffLL) | ((v4i)sgn & (long long)0x8000000000000000ULL));
 }
-IRIS_LANE_INLINE v4d vmin(v4d a, v4d b) { return sel(b < a, b, a); }  // std::min(a, b)
-IRIS_LANE_INLINE v4d vmax(v4d a, v4d b) { return sel(a < b, b, a); }  // std::max(a, b)
-IRIS_LANE_INLINE int laneMask(v4i m) { return int(m[0] & 1) | int(m[1] & 2) | int(m[2] & 4) | int(m[3] & 8); }
+IRIS_LANES_INLINE v4d vmin(v4d a, v4d b) { return sel(b < a, b, a); }  // std::min(a, b)
+IRIS_LANES_INLINE v4d vmax(v4d a, v4d b) { return sel(a < b, b, a); }  // std::max(a, b)
+IRIS_LANES_INLINE int laneMask(v4i m) { return int(m[0] & 1) | int(m[1] & 2) | int(m[2] & 4) | int(m[3] & 8); }
 
 struct vcomplex {
     v4d re, im;
 };
-IRIS_LANE_INLINE vcomplex cmul(vcomplex a, vcomplex b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
-IRIS_LANE_INLINE v4d cnorm(vcomplex a) { return a.re * a.re + a.im * a.im; }
+IRIS_LANES_INLINE vcomplex cmul(vcomplex a, vcomplex b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+IRIS_LANES_INLINE v4d cnorm(vcomplex a) { return a.re * a.re + a.im * a.im; }
 
 /// waveFromRadicand (film_airy.h) lane-wise: q = sqrt(z) on the decaying branch (Im q ≥ 0). A real
 /// radicand takes the real square root (the same value as the scalar kernel, bit for bit); a complex
 /// one the principal root from t = sqrt((|z| + |Re z|)/2) (Kahan's form: no cancellation), then the
 /// branch with Im q ≥ 0.
-IRIS_LANE_INLINE vcomplex waveFromRadicand(v4d x, v4d y) {
+IRIS_LANES_INLINE vcomplex waveFromRadicand(v4d x, v4d y) {
     const v4d ax = vabs(x);
     const v4i real = y == 0;
     const v4d m = sel(real, ax, vsqrt(x * x + y * y));  // |z|
@@ -70,7 +71,7 @@ IRIS_LANE_INLINE vcomplex waveFromRadicand(v4d x, v4d y) {
 /// airy_detail::sinCos lane-wise for |x| ≤ 1e5 (same reduction, same polynomials); the quadrant
 /// j mod 4 is read from the low bits of x·2/π + 1.5·2⁵² (that sum holds j as an integer in its last
 /// mantissa bits). Lanes with |x| > 1e5 or NaN are flagged in `big` for the caller.
-IRIS_LANE_INLINE void sinCos(v4d x, v4d& sinX, v4d& cosX, int& big) {
+IRIS_LANES_INLINE void sinCos(v4d x, v4d& sinX, v4d& cosX, int& big) {
     big = laneMask(~(vabs(x) <= 1e5));
     constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
     constexpr double kPio2_1 = 0x1.921fb544p+0;
@@ -95,7 +96,7 @@ IRIS_LANE_INLINE void sinCos(v4d x, v4d& sinX, v4d& cosX, int& big) {
 }
 
 /// One group of four lanes starting at entry i; returns the lanes (bits 0..3) that declined.
-IRIS_LANE_INLINE int airyGroup(const AiryBatchInput& in, int i, const AiryBatchOutput& out) {
+IRIS_LANES_INLINE int airyGroup(const AiryBatchInput& in, int i, const AiryBatchOutput& out) {
     const v4d s2 = load(in.s2 + i);
     // q_j = sqrt(ñ_j² − s²), Im q_j ≥ 0 (Born & Wolf §1.5, ch. 14).
     const vcomplex q1 = waveFromRadicand(load(in.n1Re + i) - s2, load(in.n1Im + i));
@@ -160,15 +161,24 @@ IRIS_LANE_INLINE int airyGroup(const AiryBatchInput& in, int i, const AiryBatchO
     return laneMask(bad);
 }
 
-}  // namespace
-
-// The AVX2 clone runs the same operations on 256-bit registers; the dispatch happens once, at load
-// time (GNU ifunc).
-__attribute__((target_clones("avx2", "default")))
-uint32_t airySingleFilmBatch(const AiryBatchInput& in, int n, const AiryBatchOutput& out) {
+IRIS_LANES_INLINE uint32_t airyBatchBody(const AiryBatchInput& in, int n, const AiryBatchOutput& out) {
     uint32_t declined = 0;
     for (int i = 0; i < n; i += kAiryLanes) declined |= uint32_t(airyGroup(in, i, out)) << i;
     return n >= 32 ? declined : declined & ((1u << n) - 1);
+}
+
+IRIS_LANES_AVX2 uint32_t airyBatchAvx2(const AiryBatchInput& in, int n, const AiryBatchOutput& out) {
+    return airyBatchBody(in, n, out);
+}
+uint32_t airyBatchBaseline(const AiryBatchInput& in, int n, const AiryBatchOutput& out) {
+    return airyBatchBody(in, n, out);
+}
+
+}  // namespace
+
+uint32_t airySingleFilmBatch(const AiryBatchInput& in, int n, const AiryBatchOutput& out) {
+    // Four doubles fill one AVX2 register, so the AVX2 build pays off from the first group.
+    return lanes::useAvx2() ? airyBatchAvx2(in, n, out) : airyBatchBaseline(in, n, out);
 }
 
 }  // namespace iris

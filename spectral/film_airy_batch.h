@@ -1,5 +1,6 @@
 // The exact single-film Airy kernel (spectral/film_airy.h) over all wavelengths of a path at once:
-// structure-of-arrays inputs, four wavelengths per SIMD group. FilmCoating (spectral/film_coating.cpp)
+// structure-of-arrays inputs, four wavelengths per SIMD group (an SSE2 and an AVX2 build,
+// spectral/lane_dispatch.h). FilmCoating (spectral/film_coating.cpp)
 // evaluates every reflectance / transmittance of a single exact film through it. Same formulation
 // and the same floating-point operations as airySingleFilmFastAt, lane by lane (docs/thin_film.md §8).
 #pragma once

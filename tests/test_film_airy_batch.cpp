@@ -13,6 +13,7 @@
 #include "spectral/film_airy.h"
 #include "spectral/film_airy_batch.h"
 #include "spectral/film_coating.h"
+#include "spectral/lane_dispatch.h"
 #include "tests/bsdf_test_util.h"
 
 namespace iris {
@@ -104,6 +105,25 @@ TEST(FilmAiryBatch, EveryLaneEqualsTheScalarKernel) {
     EXPECT_GT(complexLanes, 50000);
     std::cout << "lossless lanes " << lossless << ", complex lanes " << complexLanes << " (max |diff| "
               << maxComplexDiff << "), declined " << declined << "\n";
+}
+
+TEST(FilmAiryBatch, BaselineAndAvx2BuildsAgreeBitForBit) {
+    if (!lanes::useAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the baseline build runs";
+    std::mt19937 rng(42);
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = 1 + trial % kMaxWavelengths;
+        Batch a;
+        for (int k = 0; k < airyPadded(n); ++k) a.set(k, randomLane(rng));
+        Batch b = a;
+        const uint32_t ma = a.run(n);
+        lanes::forceBaseline = true;
+        const uint32_t mb = b.run(n);
+        lanes::forceBaseline = false;
+        ASSERT_EQ(ma, mb);
+        for (int q = 0; q < 4; ++q)
+            for (int k = 0; k < n; ++k)
+                if (!(ma >> k & 1)) ASSERT_EQ(a.out[q][k], b.out[q][k]) << "trial " << trial << " lane " << k;
+    }
 }
 
 TEST(FilmAiryBatch, DeclinedLanesAreReported) {

@@ -122,7 +122,8 @@ private:
                 for (int i = 0; i < n; ++i) acc[i] += w * sp.shapeValue(wl.lambda(i));
             }
         }
-        for (int i = 0; i < n; ++i) s[i] = acc[i] * (d65Factor_ * cie::d65(wl.lambda(i)));
+        const float* d65 = wl.d65Lanes();  // cie::d65 at the path's wavelengths, computed at sampling
+        for (int i = 0; i < n; ++i) s[i] = acc[i] * (d65Factor_ * d65[i]);
         return s * m;
     }
 
