@@ -14,7 +14,6 @@
 #include "core/lights/light.h"
 #include "core/registry.h"
 #include "core/sampling.h"
-#include "spectral/cie.h"
 #include "spectral/rgb_spectrum.h"
 
 namespace iris {
