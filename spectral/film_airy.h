@@ -29,31 +29,42 @@ inline complexd waveFromRadicand(complexd z) {
     return q;
 }
 
+/// The argument reduction and polynomials of sinCos below, shared with the batched kernel
+/// (spectral/film_airy_batch.cpp; T = double or a vector of doubles): Cody–Waite reduction
+/// x = j·π/2 + r with π/2 split into three parts (the 33-bit pieces and tail of fdlibm's
+/// __ieee754_rem_pio2, so j·p1 and j·p2 are exact for |j| < 2²⁰), then the Taylor series of sin r to
+/// r¹⁵ and cos r to r¹⁶ on |r| ≤ π/4 (truncation < 5e-17). `shifted` = x·2/π + 1.5·2⁵² holds j as an
+/// integer in its last mantissa bits; j = shifted − 1.5·2⁵².
+constexpr double kRoundToInteger = 0x1.8p52;  // adding it rounds to an integer
+template <typename T>
+[[gnu::always_inline]] inline void sinCosReduced(T x, T& shifted, T& sinR, T& cosR) {
+    constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
+    constexpr double kPio2_1 = 0x1.921fb544p+0;         // first 33 bits of π/2
+    constexpr double kPio2_2 = 0x1.0b4611a6p-34;        // next 33 bits
+    constexpr double kPio2_2t = 0x1.3198a2e037073p-69;  // π/2 − kPio2_1 − kPio2_2
+    shifted = x * kTwoOverPi + kRoundToInteger;
+    const T j = shifted - kRoundToInteger;  // nearest integer to x·2/π
+    const T r = ((x - j * kPio2_1) - j * kPio2_2) - j * kPio2_2t;
+    const T z = r * r;
+    // Taylor coefficients (−1)^k/(2k+1)! and (−1)^k/(2k)!.
+    sinR = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
+           z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0 + z * (-1.0 / 1307674368000.0)))))));
+    cosR = 1.0 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 + z * (-1.0 / 3628800 +
+           z * (1.0 / 479001600 + z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0))))))));
+}
+
 /// sin x and cos x together, inline (one polynomial pair instead of a libm sincos call), for the
-/// Airy phase: Cody–Waite reduction x = j·π/2 + r with π/2 split into three parts (the 33-bit
-/// pieces and tail of fdlibm's __ieee754_rem_pio2, so j·p1 and j·p2 are exact for |j| < 2²⁰),
-/// then the Taylor series of sin r to r¹⁵ and cos r to r¹⁶ on |r| ≤ π/4 (truncation < 5e-17) and
-/// the quadrant j mod 4. |x| > 1e5 (films thicker than ~1 mm): std::sin / std::cos.
-/// Agreement with glibc: tests/test_film_fast.cpp (FilmFastPath.SinCosMatchesLibm).
+/// Airy phase: sinCosReduced, then the quadrant j mod 4. |x| > 1e5 (films thicker than ~1 mm):
+/// std::sin / std::cos. Agreement with glibc: tests/test_film_fast.cpp (FilmFastPath.SinCosMatchesLibm).
 inline void sinCos(double x, double& sinX, double& cosX) {
     if (!(std::abs(x) <= 1e5)) {
         sinX = std::sin(x);
         cosX = std::cos(x);
         return;
     }
-    constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
-    constexpr double kPio2_1 = 0x1.921fb544p+0;           // first 33 bits of π/2
-    constexpr double kPio2_2 = 0x1.0b4611a6p-34;          // next 33 bits
-    constexpr double kPio2_2t = 0x1.3198a2e037073p-69;    // π/2 − kPio2_1 − kPio2_2
-    constexpr double kRound = 0x1.8p52;                   // adding it rounds to an integer
-    const double j = (x * kTwoOverPi + kRound) - kRound;  // nearest integer to x·2/π
-    const double r = ((x - j * kPio2_1) - j * kPio2_2) - j * kPio2_2t;
-    const double z = r * r;
-    // Taylor coefficients (−1)^k/(2k+1)! and (−1)^k/(2k)!.
-    const double sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
-                      z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0 + z * (-1.0 / 1307674368000.0)))))));
-    const double cr = 1.0 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 + z * (-1.0 / 3628800 +
-                      z * (1.0 / 479001600 + z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0))))))));
+    double shifted, sr, cr;
+    sinCosReduced(x, shifted, sr, cr);
+    const double j = shifted - kRoundToInteger;
     switch (static_cast<long long>(j) & 3) {  // x = r + j·π/2
         case 0: sinX = sr; cosX = cr; break;
         case 1: sinX = cr; cosX = -sr; break;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "spectral/film_airy.h"
 #include "spectral/lane_dispatch.h"
 
 namespace iris {
@@ -68,26 +69,14 @@ IRIS_LANES_INLINE vcomplex waveFromRadicand(v4d x, v4d y) {
     return {re, im};
 }
 
-/// airy_detail::sinCos lane-wise for |x| ≤ 1e5 (same reduction, same polynomials); the quadrant
-/// j mod 4 is read from the low bits of x·2/π + 1.5·2⁵² (that sum holds j as an integer in its last
-/// mantissa bits). Lanes with |x| > 1e5 or NaN are flagged in `big` for the caller.
+/// airy_detail::sinCos lane-wise for |x| ≤ 1e5 (the same reduction and polynomials,
+/// airy_detail::sinCosReduced); the quadrant j mod 4 is read from the low bits of `shifted`. Lanes
+/// with |x| > 1e5 or NaN are flagged in `big` for the caller.
 IRIS_LANES_INLINE void sinCos(v4d x, v4d& sinX, v4d& cosX, int& big) {
     big = laneMask(~(vabs(x) <= 1e5));
-    constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
-    constexpr double kPio2_1 = 0x1.921fb544p+0;
-    constexpr double kPio2_2 = 0x1.0b4611a6p-34;
-    constexpr double kPio2_2t = 0x1.3198a2e037073p-69;
-    constexpr double kRound = 0x1.8p52;
-    const v4d shifted = x * kTwoOverPi + kRound;
+    v4d shifted, sr, cr;
+    airy_detail::sinCosReduced(x, shifted, sr, cr);
     const v4i quadrant = (v4i)shifted & 3;
-    const v4d j = shifted - kRound;
-    const v4d r = ((x - j * kPio2_1) - j * kPio2_2) - j * kPio2_2t;
-    const v4d z = r * r;
-    // Taylor coefficients (−1)^k/(2k+1)! and (−1)^k/(2k)!, as in film_airy.h.
-    const v4d sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
-                   z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0 + z * (-1.0 / 1307674368000.0)))))));
-    const v4d cr = 1.0 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 + z * (-1.0 / 3628800 +
-                   z * (1.0 / 479001600 + z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0))))))));
     // x = r + j·π/2: quadrant 0 (sr, cr), 1 (cr, −sr), 2 (−sr, −cr), 3 (−cr, sr).
     const v4i odd = (quadrant & 1) != 0;
     const v4d s = sel(odd, cr, sr), c = sel(odd, sr, cr);
