@@ -38,9 +38,11 @@ class ProposedBSDF final : public BSDF {
 public:
     /// Per-channel constants of one shading point.
     struct Channel {
-        float eta, etaT, lambda;  // η_c = η_t,c/η_i, η_t,c, λ_c (nm)
-        float ws, wdEff;          // ws and the effective diffuse weight wd/(1 − Rd) (eq. 3.16)
-        float fdr;                // Rd = Fdr = 1 − Td(η_c, α) (eq. 3.19)
+        float eta;         // η_c = η_t,c/η_i
+        float invEta2;     // (1/η_c)², the Snell factor of filmCosine
+        float phaseScale;  // π η_t,c d/λ_c, the factor of (cosθti + cosθto) in eq. 3.20
+        float ws, wdEff;   // ws and the effective diffuse weight wd/(1 − Rd) (eq. 3.16)
+        float fdr;         // Rd = Fdr = 1 − Td(η_c, α) (eq. 3.19)
     };
     struct Params {
         RoughCoatChannels coatT;  // T(η_c, α, μ) per channel (collapsed lines or table stencils)
@@ -56,7 +58,9 @@ public:
         float wsAvg, wdAvg;  // channel averages of ws and wd (sampling probability)
     };
 
-    explicit ProposedBSDF(const Params& p) : p_(p) {}
+    ProposedBSDF() = default;
+    /// The parameters, filled in place by ProposedMaterial::getBSDF (no copy of Params).
+    Params& params() { return p_; }
 
     vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
 
@@ -81,9 +85,9 @@ public:
                 f[c] = fr + ft;
                 continue;
             }
-            const float cosTi = filmCosine(eta, wiC.z);
+            const float cosTi = filmCosine(k.invEta2, wiC.z);
             const float cosTo = o.cosTo[c];
-            const float phi = kPi * k.etaT * p_.d / k.lambda * (cosTi + cosTo);  // eq. 3.20
+            const float phi = k.phaseScale * (cosTi + cosTo);  // eq. 3.20
             const float cos2phi = std::cos(2.0f * phi);
             if (p_.phase == PhaseMode::Total) {
                 f[c] = fr + ft + 2.0f * cos2phi * std::sqrt(fr * ft);  // eqs. 3.21–3.22
@@ -157,16 +161,14 @@ private:
         float t = 0.0f;
         for (int c = 0; c < n; ++c) t += o.tO[c];
         o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
-        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].eta, o.woC.z);
+        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].invEta2, o.woC.z);
         return o;
     }
 
     /// Cosine of a direction (cosine cosC about n0) refracted specularly into the film of relative
-    /// index eta (eqs. 3.1–3.2 reading; Snell's law).
-    static float filmCosine(float eta, float cosC) {
-        const float inv = 1.0f / eta;
-        return safeSqrt(1.0f - inv * inv * (1.0f - cosC * cosC));
-    }
+    /// index η (eqs. 3.1–3.2 reading; Snell's law: cos²θt = 1 − (1/η)² sin²θ), from invEta2 =
+    /// (1/η)·(1/η) of the channel (the same float operations as computing 1/η here).
+    static float filmCosine(float invEta2, float cosC) { return safeSqrt(1.0f - invEta2 * (1.0f - cosC * cosC)); }
 
     Params p_;
     mutable WoTerms wo_;
@@ -228,7 +230,8 @@ public:
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const int n = wl.size();
-        ProposedBSDF::Params q;
+        ProposedBSDF* bsdf = arena.make<ProposedBSDF>();
+        ProposedBSDF::Params& q = bsdf->params();
         const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
         q.dist = MicrofacetDistribution(type_, alpha, alpha);
         q.d = std::max(0.0f, thickness_->eval(sp.tex));
@@ -240,17 +243,24 @@ public:
         q.phase = phase_;
         q.n = n;
         const SampledSpectrum etaT = etaT_.sample(wl), lambda = channelLambdas(wl, lambdas_);
-        const SampledSpectrum ws = clampZero(ws_->eval(sp.tex, wl)), wd = clampZero(wd_->eval(sp.tex, wl));
-        q.wsAvg = ws.average();
-        q.wdAvg = wd.average();
+        const SampledSpectrum ws = ws_->eval(sp.tex, wl), wd = wd_->eval(sp.tex, wl);
         using Channel = ProposedBSDF::Channel;
         auto* ch = static_cast<Channel*>(arena.allocate(sizeof(Channel) * size_t(n), alignof(Channel)));
+        float eta[kMaxWavelengths], wdC[kMaxWavelengths];
+        float wsSum = 0.0f, wdSum = 0.0f;  // in channel order, as SampledSpectrum::average
         for (int c = 0; c < n; ++c) {
-            ch[c].eta = etaT[c] / etaI_;
-            ch[c].etaT = etaT[c];
-            ch[c].lambda = lambda[c];
-            ch[c].ws = ws[c];
+            eta[c] = etaT[c] / etaI_;
+            const float inv = 1.0f / eta[c];
+            ch[c].eta = eta[c];
+            ch[c].invEta2 = inv * inv;
+            ch[c].phaseScale = kPi * etaT[c] * q.d / lambda[c];  // eq. 3.20 without the cosines
+            ch[c].ws = std::max(0.0f, ws[c]);                    // clampZero
+            wdC[c] = std::max(0.0f, wd[c]);
+            wsSum += ch[c].ws;
+            wdSum += wdC[c];
         }
+        q.wsAvg = n > 0 ? wsSum / float(n) : 0.0f;
+        q.wdAvg = n > 0 ? wdSum / float(n) : 0.0f;
         q.coatT.tables = tables_;
         if (atAlpha_) {
             const int nMu = atAlpha_->nMu();
@@ -260,10 +270,9 @@ public:
                 for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
             } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
                 auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
-                for (int c = 0; c < n; ++c) {
-                    se[c] = atAlpha_->etaStencil(ch[c].eta);
-                    ch[c].fdr = 1.0f - atAlpha_->diffuse(se[c]);  // eq. 3.19
-                }
+                float td[kMaxWavelengths];
+                atAlpha_->etaStencils(eta, n, se, td);  // = etaStencil(η_c), diffuse(·) per channel
+                for (int c = 0; c < n; ++c) ch[c].fdr = 1.0f - td[c];  // eq. 3.19
                 q.coatT.atAlpha = &*atAlpha_;
                 q.coatT.etaStencils = se;
             }
@@ -271,14 +280,14 @@ public:
             using Line = RoughTransmittanceTables::Line;
             auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(n), alignof(Line)));
             for (int c = 0; c < n; ++c) {
-                new (&lines[c]) Line(tables_->line(ch[c].eta, alpha));
-                ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(ch[c].eta, alpha);  // eq. 3.19
+                new (&lines[c]) Line(tables_->line(eta[c], alpha));
+                ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(eta[c], alpha);  // eq. 3.19
             }
             q.coatT.stencils = lines;
         }
-        for (int c = 0; c < n; ++c) ch[c].wdEff = roughCoatAlbedo(wd[c], ch[c].fdr, false);  // wd/(1 − Rd)
+        for (int c = 0; c < n; ++c) ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
         q.ch = ch;
-        return arena.make<ProposedBSDF>(q);
+        return bsdf;
     }
 
 private:

@@ -15,6 +15,7 @@
 #include <mutex>
 
 #include <unistd.h>
+#include <xmmintrin.h>
 
 #include "core/error.h"
 #include "materials/fresnel.h"
@@ -221,6 +222,61 @@ RoughTablesAtAlpha::RoughTablesAtAlpha(const RoughTransmittanceTables& t, float 
 }
 
 RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmullRom(etaCoord(eta, nEta_), nEta_); }
+
+void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, float* td) const {
+    // Lane-wise the scalar etaCoord, roughCatmullRom (eqs. 2.45–2.49, interior branch) and
+    // diffuse (eq. 2.51); GCC/Clang vector extension (element-wise IEEE operations) and SSE sqrt
+    // (correctly rounded, as std::sqrt).
+    typedef float V4 __attribute__((vector_size(16)));
+    typedef int I4 __attribute__((vector_size(16)));
+    using T = RoughTransmittanceTables;
+    const V4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+    const float last = float(nEta_ - 1);
+    const V4 lastV = {last, last, last, last};
+    int c = 0;
+    for (; c + 4 <= n; c += 4) {
+        V4 e;
+        std::memcpy(&e, eta + c, sizeof(e));
+        V4 u = (e - T::kEtaMin) / (T::kEtaMax - T::kEtaMin);
+        u = u < zero ? zero : (one < u ? one : u);  // std::clamp(u, 0, 1)
+        V4 x = V4(_mm_sqrt_ps(__m128(u))) * last;  // etaCoord
+        x = x < zero ? zero : (lastV < x ? lastV : x);  // roughCatmullRom: std::clamp(x, 0, n − 1)
+        I4 i = __builtin_convertvector(x, I4);
+        const I4 iMax = {nEta_ - 2, nEta_ - 2, nEta_ - 2, nEta_ - 2};
+        i = iMax < i ? iMax : i;  // std::min(int(x), n − 2)
+        const V4 t = x - __builtin_convertvector(i, V4), t2 = t * t, t3 = t2 * t;
+        const V4 w[4] = {-0.5f * t + t2 - 0.5f * t3,        // eq. 2.46
+                         1.0f - 2.5f * t2 + 1.5f * t3,      // eq. 2.47
+                         0.5f * t + 2.0f * t2 - 1.5f * t3,  // eq. 2.48
+                         -0.5f * t2 + 0.5f * t3};           // eq. 2.49
+        V4 d = zero;
+        bool interior[4];
+        V4 rows[4] = {zero, zero, zero, zero};
+        for (int k = 0; k < 4; ++k) {
+            interior[k] = i[k] >= 1 && i[k] + 2 <= nEta_ - 1;
+            for (int m = 0; m < 4; ++m) rows[m][k] = interior[k] ? diffuse_[size_t(i[k] - 1 + m)] : 0.0f;
+        }
+        for (int m = 0; m < 4; ++m) d = d + w[m] * rows[m];  // diffuse: Σ w_m Td[i − 1 + m] in order
+        for (int k = 0; k < 4; ++k) {
+            RoughStencil& s = se[c + k];
+            if (!interior[k]) {  // ghost nodes (or NaN): the scalar code
+                s = etaStencil(eta[c + k]);
+                td[c + k] = diffuse(s);
+                continue;
+            }
+            for (int m = 0; m < 4; ++m) {
+                s.idx[m] = i[k] - 1 + m;
+                s.w[m] = w[m][k];
+            }
+            s.count = 4;
+            td[c + k] = std::clamp(d[k], 0.0f, 1.0f);
+        }
+    }
+    for (; c < n; ++c) {
+        se[c] = etaStencil(eta[c]);
+        td[c] = diffuse(se[c]);
+    }
+}
 
 float RoughTablesAtAlpha::collapse(float eta, float* line) const {
     const RoughStencil se = etaStencil(eta);

@@ -139,6 +139,13 @@ public:
     /// performs the float operations of collapse() and roughLineTransmittance(), so
     /// transmittance(etaStencil(η), μ) == roughLineTransmittance(line of collapse(η), μ) exactly.
     RoughStencil etaStencil(float eta) const;
+    /// etaStencil(eta[c]) and diffuse() of it for the n channels of one path (spectral mode, n ≤
+    /// kMaxWavelengths), four channels at a time in SIMD lanes. Each lane performs the float
+    /// operations of the scalar etaCoord / roughCatmullRom / diffuse in the same order (IEEE
+    /// element-wise, no contraction), so se[c] == etaStencil(eta[c]) and td[c] == diffuse(se[c])
+    /// bit for bit; a lane whose stencil is not interior (η at the ends of the table, NaN) and the
+    /// n mod 4 last channels are computed by the scalar code.
+    void etaStencils(const float* eta, int n, RoughStencil* se, float* td) const;
     float diffuse(const RoughStencil& se) const {
         float td = 0;
         for (int i = 0; i < se.count; ++i) td += se.w[i] * diffuse_[size_t(se.idx[i])];
@@ -178,6 +185,45 @@ public:
             for (int k = 0; k < mu.count; ++k) v += mu.w[k] * lineNode(se, mu.idx[k]);
         }
         return std::clamp(v, 0.0f, 1.0f);
+    }
+
+    /// transmittance(se[c], mu) for c = 0..n−1 into out[c]: the per-channel T of one path at one μ
+    /// stencil (the μ stencil is shared by all channels). With an interior μ stencil and four
+    /// channels of 4-node η stencils, the four channels' sums run side by side: the node sums as in
+    /// transmittance() (lane = μ node), then a 4×4 transpose and the μ sum with lane = channel, the
+    /// same operations in the same order per channel, so out[c] == transmittance(se[c], mu) exactly.
+    void transmittances(const RoughStencil* se, int n, const RoughStencil& mu, float* out) const {
+        typedef float V4 __attribute__((vector_size(16)));
+        int c = 0;
+        if (mu.count == 4 && mu.idx[1] == mu.idx[0] + 1 && mu.idx[2] == mu.idx[0] + 2 && mu.idx[3] == mu.idx[0] + 3) {
+            const size_t m0 = size_t(mu.idx[0]);
+            for (; c + 4 <= n; c += 4) {
+                if (se[c].count != 4 || se[c + 1].count != 4 || se[c + 2].count != 4 || se[c + 3].count != 4) {
+                    for (int k = 0; k < 4; ++k) out[c + k] = transmittance(se[c + k], mu);
+                    continue;
+                }
+                V4 node[4];  // node[k][j]: channel c + k, μ node m0 + j (lineNode)
+                for (int k = 0; k < 4; ++k) {
+                    const RoughStencil& s = se[c + k];
+                    V4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
+                    for (int i = 0; i < 4; ++i) {
+                        V4 r;
+                        std::memcpy(&r, &ext_[size_t(s.idx[i]) * size_t(nMu_) + m0], sizeof(r));
+                        const V4 w = {s.w[i], s.w[i], s.w[i], s.w[i]};
+                        acc = acc + w * r;
+                    }
+                    node[k] = acc;
+                }
+                V4 v = {0.0f, 0.0f, 0.0f, 0.0f};  // lane k = channel c + k
+                for (int j = 0; j < 4; ++j) {
+                    const V4 nj = {node[0][j], node[1][j], node[2][j], node[3][j]};
+                    const V4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
+                    v = v + w * nj;
+                }
+                for (int k = 0; k < 4; ++k) out[c + k] = std::clamp(v[k], 0.0f, 1.0f);
+            }
+        }
+        for (; c < n; ++c) out[c] = transmittance(se[c], mu);
     }
 
 private:

@@ -81,9 +81,8 @@ struct RoughCoatChannels {
         if (lines) {
             const RoughStencil s = roughMuStencil(cosTheta, nMu);  // shared by all channels
             for (int c = 0; c < n; ++c) out[c] = roughLineTransmittance(lines + size_t(c) * size_t(nMu), s);
-        } else if (etaStencils) {
-            const RoughStencil s = roughMuStencil(cosTheta, nMu);
-            for (int c = 0; c < n; ++c) out[c] = atAlpha->transmittance(etaStencils[c], s);
+        } else if (etaStencils) {  // channels side by side, equal to atAlpha->transmittance per channel
+            atAlpha->transmittances(etaStencils, n, roughMuStencil(cosTheta, nMu), out);
         } else {
             for (int c = 0; c < n; ++c) out[c] = tables->transmittance(stencils[c], cosTheta);
         }
