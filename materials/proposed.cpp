@@ -69,9 +69,10 @@ public:
         SampledSpectrum f(n);
         if (wo.z <= 0 || wi.z <= 0) return f;
         const WoTerms& o = woTerms(wo);
-        const vec3 woC = o.woC, wiC = toCoat(wi);
+        const WiTerms& t = wiTerms(o, wi);
+        const vec3 woC = o.woC, wiC = t.wiC;
         if (woC.z <= 0 || wiC.z <= 0) return f;
-        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o);
+        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o, t.half);
         float tI[kMaxWavelengths];  // T12 per channel (eq. 2.52); T21 is o.tO (eq. 2.53)
         p_.coatT.transmittance(wiC.z, n, tI);
         for (int c = 0; c < n; ++c) {
@@ -129,7 +130,8 @@ public:
         if (o.woC.z <= 0) return 0.0f;
         const float ps = o.ps;
         const float cosB = p_.tilted1 ? glm::dot(wi, p_.n1) : wi.z;
-        return ps * roughCoatSpecularPdf(p_.dist, o.woC, toCoat(wi), o.g1o) + (1.0f - ps) * cosineHemispherePdf(cosB);
+        const WiTerms& t = wiTerms(o, wi);
+        return ps * roughCoatSpecularPdf(o.woC, o.g1o, t.half) + (1.0f - ps) * cosineHemispherePdf(cosB);
     }
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
@@ -148,6 +150,25 @@ private:
         float tO[kMaxWavelengths];     // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
         float cosTo[kMaxWavelengths];  // cosine of wo refracted into the film per channel (eq. 3.20)
     };
+
+    /// What depends on the pair (wo, wi): wi in the coat frame, the half vector and D(h). eval and
+    /// pdf of one pair follow each other (next-event estimation: eval then pdf; sample: pdf then
+    /// eval), so the second call reuses them (pure functions of the pair: the same values).
+    struct WiTerms {
+        vec3 wo{std::numeric_limits<float>::quiet_NaN()}, wi{std::numeric_limits<float>::quiet_NaN()};  // key
+        vec3 wiC{0.0f};
+        RoughCoatHalf half;  // of (woC, wiC)
+    };
+
+    const WiTerms& wiTerms(const WoTerms& o, const vec3& wi) const {
+        WiTerms& t = wi_;
+        if (wi == t.wi && o.wo == t.wo) return t;
+        t.wo = o.wo;
+        t.wi = wi;
+        t.wiC = toCoat(wi);
+        t.half = roughCoatHalf(p_.dist, o.woC, t.wiC);
+        return t;
+    }
 
     const WoTerms& woTerms(const vec3& wo) const {
         WoTerms& o = wo_;
@@ -172,6 +193,7 @@ private:
 
     Params p_;
     mutable WoTerms wo_;
+    mutable WiTerms wi_;
 };
 
 class ProposedMaterial final : public Material {
@@ -270,11 +292,13 @@ public:
                 for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
             } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
                 auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
+                auto* rows = static_cast<RoughEtaRows*>(arena.allocate(sizeof(RoughEtaRows) * size_t(n), alignof(RoughEtaRows)));
                 float td[kMaxWavelengths];
-                atAlpha_->etaStencils(eta, n, se, td);  // = etaStencil(η_c), diffuse(·) per channel
+                atAlpha_->etaStencils(eta, n, se, td, rows);  // = etaStencil(η_c), diffuse(·) per channel
                 for (int c = 0; c < n; ++c) ch[c].fdr = 1.0f - td[c];  // eq. 3.19
                 q.coatT.atAlpha = &*atAlpha_;
                 q.coatT.etaStencils = se;
+                q.coatT.etaRows = rows;
             }
         } else {  // textured α: the (η, α) stencils of the full tables
             using Line = RoughTransmittanceTables::Line;

@@ -223,7 +223,7 @@ RoughTablesAtAlpha::RoughTablesAtAlpha(const RoughTransmittanceTables& t, float 
 
 RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmullRom(etaCoord(eta, nEta_), nEta_); }
 
-void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, float* td) const {
+void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows) const {
     // Lane-wise the scalar etaCoord, roughCatmullRom (eqs. 2.45–2.49, interior branch) and
     // diffuse (eq. 2.51); GCC/Clang vector extension (element-wise IEEE operations) and SSE sqrt
     // (correctly rounded, as std::sqrt).
@@ -251,17 +251,18 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
                          -0.5f * t2 + 0.5f * t3};           // eq. 2.49
         V4 d = zero;
         bool interior[4];
-        V4 rows[4] = {zero, zero, zero, zero};
+        V4 tdNodes[4] = {zero, zero, zero, zero};  // tdNodes[m][k]: Td of node i − 1 + m of lane k
         for (int k = 0; k < 4; ++k) {
             interior[k] = i[k] >= 1 && i[k] + 2 <= nEta_ - 1;
-            for (int m = 0; m < 4; ++m) rows[m][k] = interior[k] ? diffuse_[size_t(i[k] - 1 + m)] : 0.0f;
+            for (int m = 0; m < 4; ++m) tdNodes[m][k] = interior[k] ? diffuse_[size_t(i[k] - 1 + m)] : 0.0f;
         }
-        for (int m = 0; m < 4; ++m) d = d + w[m] * rows[m];  // diffuse: Σ w_m Td[i − 1 + m] in order
+        for (int m = 0; m < 4; ++m) d = d + w[m] * tdNodes[m];  // diffuse: Σ w_m Td[i − 1 + m] in order
         for (int k = 0; k < 4; ++k) {
             RoughStencil& s = se[c + k];
             if (!interior[k]) {  // ghost nodes (or NaN): the scalar code
                 s = etaStencil(eta[c + k]);
                 td[c + k] = diffuse(s);
+                if (rows) rows[c + k].row = nullptr;
                 continue;
             }
             for (int m = 0; m < 4; ++m) {
@@ -270,11 +271,20 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
             }
             s.count = 4;
             td[c + k] = std::clamp(d[k], 0.0f, 1.0f);
+            if (rows) {
+                RoughEtaRows& r = rows[c + k];
+                r.row = &ext_[size_t(i[k] - 1) * size_t(nMu_)];
+                for (int m = 0; m < 4; ++m) {
+                    const float wm = w[m][k];
+                    r.w[m] = RoughV4{wm, wm, wm, wm};
+                }
+            }
         }
     }
     for (; c < n; ++c) {
         se[c] = etaStencil(eta[c]);
         td[c] = diffuse(se[c]);
+        if (rows) rows[c].row = nullptr;  // transmittances() takes the scalar path for these
     }
 }
 

@@ -67,6 +67,17 @@ public:
     static float muNode(int i, int n) { return float(i) / float(n - 1); }
 };
 
+/// Four float lanes (GCC/Clang vector extension: element-wise IEEE operations, SSE on x86-64).
+typedef float RoughV4 __attribute__((vector_size(16)));
+
+/// An interior η stencil (four consecutive η nodes) of a RoughTablesAtAlpha prepared for
+/// RoughTablesAtAlpha::transmittances: the first of its four table rows and its four weights, each
+/// broadcast to four lanes. row == nullptr: not interior (use the RoughStencil).
+struct RoughEtaRows {
+    RoughV4 w[4];
+    const float* row = nullptr;
+};
+
 /// Catmull-Rom stencil (thesis eqs. 2.45–2.50): up to four (index, weight) pairs at grid
 /// coordinate x ∈ [0, n−1]. Ghost nodes beyond the ends are linear extrapolations
 /// (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}), folded into the weights.
@@ -144,8 +155,9 @@ public:
     /// operations of the scalar etaCoord / roughCatmullRom / diffuse in the same order (IEEE
     /// element-wise, no contraction), so se[c] == etaStencil(eta[c]) and td[c] == diffuse(se[c])
     /// bit for bit; a lane whose stencil is not interior (η at the ends of the table, NaN) and the
-    /// n mod 4 last channels are computed by the scalar code.
-    void etaStencils(const float* eta, int n, RoughStencil* se, float* td) const;
+    /// n mod 4 last channels are computed by the scalar code. rows (optional): the same stencils
+    /// prepared for transmittances().
+    void etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows = nullptr) const;
     float diffuse(const RoughStencil& se) const {
         float td = 0;
         for (int i = 0; i < se.count; ++i) td += se.w[i] * diffuse_[size_t(se.idx[i])];
@@ -189,35 +201,37 @@ public:
 
     /// transmittance(se[c], mu) for c = 0..n−1 into out[c]: the per-channel T of one path at one μ
     /// stencil (the μ stencil is shared by all channels). With an interior μ stencil and four
-    /// channels of 4-node η stencils, the four channels' sums run side by side: the node sums as in
-    /// transmittance() (lane = μ node), then a 4×4 transpose and the μ sum with lane = channel, the
-    /// same operations in the same order per channel, so out[c] == transmittance(se[c], mu) exactly.
-    void transmittances(const RoughStencil* se, int n, const RoughStencil& mu, float* out) const {
-        typedef float V4 __attribute__((vector_size(16)));
+    /// channels with prepared interior rows (etaStencils), the four channels' sums run side by
+    /// side: the node sums as in transmittance() (lane = μ node), then a 4×4 transpose and the μ
+    /// sum with lane = channel, the same operations in the same order per channel, so out[c] ==
+    /// transmittance(se[c], mu) exactly. Other channels take transmittance().
+    void transmittances(const RoughStencil* se, const RoughEtaRows* rows, int n, const RoughStencil& mu,
+                        float* out) const {
         int c = 0;
-        if (mu.count == 4 && mu.idx[1] == mu.idx[0] + 1 && mu.idx[2] == mu.idx[0] + 2 && mu.idx[3] == mu.idx[0] + 3) {
-            const size_t m0 = size_t(mu.idx[0]);
+        if (rows && mu.count == 4 && mu.idx[1] == mu.idx[0] + 1 && mu.idx[2] == mu.idx[0] + 2 &&
+            mu.idx[3] == mu.idx[0] + 3) {
+            const size_t m0 = size_t(mu.idx[0]), stride = size_t(nMu_);
             for (; c + 4 <= n; c += 4) {
-                if (se[c].count != 4 || se[c + 1].count != 4 || se[c + 2].count != 4 || se[c + 3].count != 4) {
+                if (!rows[c].row || !rows[c + 1].row || !rows[c + 2].row || !rows[c + 3].row) {
                     for (int k = 0; k < 4; ++k) out[c + k] = transmittance(se[c + k], mu);
                     continue;
                 }
-                V4 node[4];  // node[k][j]: channel c + k, μ node m0 + j (lineNode)
+                RoughV4 node[4];  // node[k][j]: channel c + k, μ node m0 + j (lineNode)
                 for (int k = 0; k < 4; ++k) {
-                    const RoughStencil& s = se[c + k];
-                    V4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
+                    const RoughEtaRows& r = rows[c + k];
+                    const float* p = r.row + m0;
+                    RoughV4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
                     for (int i = 0; i < 4; ++i) {
-                        V4 r;
-                        std::memcpy(&r, &ext_[size_t(s.idx[i]) * size_t(nMu_) + m0], sizeof(r));
-                        const V4 w = {s.w[i], s.w[i], s.w[i], s.w[i]};
-                        acc = acc + w * r;
+                        RoughV4 v;
+                        std::memcpy(&v, p + size_t(i) * stride, sizeof(v));
+                        acc = acc + r.w[i] * v;
                     }
                     node[k] = acc;
                 }
-                V4 v = {0.0f, 0.0f, 0.0f, 0.0f};  // lane k = channel c + k
+                RoughV4 v = {0.0f, 0.0f, 0.0f, 0.0f};  // lane k = channel c + k
                 for (int j = 0; j < 4; ++j) {
-                    const V4 nj = {node[0][j], node[1][j], node[2][j], node[3][j]};
-                    const V4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
+                    const RoughV4 nj = {node[0][j], node[1][j], node[2][j], node[3][j]};
+                    const RoughV4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
                     v = v + w * nj;
                 }
                 for (int k = 0; k < 4; ++k) out[c + k] = std::clamp(v[k], 0.0f, 1.0f);

@@ -292,7 +292,12 @@ TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
                     eta[c] = rng.uniform() < 0.3f ? pool[size_t(rng.uniform() * float(pool.size())) % pool.size()]
                                                   : 1.0f + 2.0f * rng.uniform();
                 RoughStencil se[kMaxWavelengths];
-                at.etaStencils(eta, n, se, td);
+                RoughEtaRows rows[kMaxWavelengths];
+                at.etaStencils(eta, n, se, td, rows);
+                float td2[kMaxWavelengths];
+                RoughStencil se2[kMaxWavelengths];
+                at.etaStencils(eta, n, se2, td2);  // without the prepared rows: the same stencils
+                for (int c = 0; c < n; ++c) ASSERT_EQ(td2[c], td[c]);
                 for (int c = 0; c < n; ++c) {
                     const RoughStencil ref = at.etaStencil(eta[c]);
                     ASSERT_EQ(se[c].count, ref.count) << eta[c];
@@ -304,10 +309,12 @@ TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
                 }
                 for (float mu : mus) {
                     const RoughStencil sm = roughMuStencil(mu, at.nMu());
-                    float out[kMaxWavelengths];
-                    at.transmittances(se, n, sm, out);
+                    float out[kMaxWavelengths], outScalar[kMaxWavelengths];
+                    at.transmittances(se, rows, n, sm, out);
+                    at.transmittances(se, nullptr, n, sm, outScalar);
                     for (int c = 0; c < n; ++c) {
                         ASSERT_EQ(out[c], at.transmittance(se[c], sm)) << eta[c] << " " << mu << " n " << n;
+                        ASSERT_EQ(outScalar[c], out[c]);
                         ++checked;
                     }
                 }
