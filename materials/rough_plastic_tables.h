@@ -200,27 +200,33 @@ public:
     }
 
     /// transmittance(se[c], mu) for c = 0..n−1 into out[c]: the per-channel T of one path at one μ
-    /// stencil (the μ stencil is shared by all channels). With an interior μ stencil and four
+    /// stencil (the μ stencil is shared by all channels). With consecutive μ nodes (every stencil
+    /// of roughMuStencil: four interior nodes, or three at the ends of the μ range) and four
     /// channels with prepared interior rows (etaStencils), the four channels' sums run side by
-    /// side: the node sums as in transmittance() (lane = μ node), then a 4×4 transpose and the μ
-    /// sum with lane = channel, the same operations in the same order per channel, so out[c] ==
+    /// side: the node sums as in transmittance() (lane = μ node; the four loaded nodes are shifted
+    /// back to stay inside the row at the upper end), then a 4×4 transpose and the μ sum with
+    /// lane = channel, the same operations in the same order per channel, so out[c] ==
     /// transmittance(se[c], mu) exactly. Other channels take transmittance().
     void transmittances(const RoughStencil* se, const RoughEtaRows* rows, int n, const RoughStencil& mu,
                         float* out) const {
         int c = 0;
-        if (rows && mu.count == 4 && mu.idx[1] == mu.idx[0] + 1 && mu.idx[2] == mu.idx[0] + 2 &&
-            mu.idx[3] == mu.idx[0] + 3) {
-            const size_t m0 = size_t(mu.idx[0]), stride = size_t(nMu_);
+        bool consecutive = rows && nMu_ >= 4 && mu.count >= 1 && mu.count <= 4;
+        for (int j = 1; consecutive && j < mu.count; ++j) consecutive = mu.idx[j] == mu.idx[0] + j;
+        if (consecutive) {
+            const int b = std::min(mu.idx[0], nMu_ - 4);  // first loaded node
+            const int o = mu.idx[0] - b;                   // lane of the first stencil node
+            const size_t stride = size_t(nMu_);
+            const RoughV4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
             for (; c + 4 <= n; c += 4) {
                 if (!rows[c].row || !rows[c + 1].row || !rows[c + 2].row || !rows[c + 3].row) {
                     for (int k = 0; k < 4; ++k) out[c + k] = transmittance(se[c + k], mu);
                     continue;
                 }
-                RoughV4 node[4];  // node[k][j]: channel c + k, μ node m0 + j (lineNode)
+                RoughV4 node[4];  // node[k][l]: channel c + k, μ node b + l (lineNode)
                 for (int k = 0; k < 4; ++k) {
                     const RoughEtaRows& r = rows[c + k];
-                    const float* p = r.row + m0;
-                    RoughV4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
+                    const float* p = r.row + b;
+                    RoughV4 acc = zero;
                     for (int i = 0; i < 4; ++i) {
                         RoughV4 v;
                         std::memcpy(&v, p + size_t(i) * stride, sizeof(v));
@@ -228,13 +234,15 @@ public:
                     }
                     node[k] = acc;
                 }
-                RoughV4 v = {0.0f, 0.0f, 0.0f, 0.0f};  // lane k = channel c + k
-                for (int j = 0; j < 4; ++j) {
-                    const RoughV4 nj = {node[0][j], node[1][j], node[2][j], node[3][j]};
+                RoughV4 v = zero;  // lane k = channel c + k
+                for (int j = 0; j < mu.count; ++j) {
+                    const int l = o + j;
+                    const RoughV4 nj = {node[0][l], node[1][l], node[2][l], node[3][l]};
                     const RoughV4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
                     v = v + w * nj;
                 }
-                for (int k = 0; k < 4; ++k) out[c + k] = std::clamp(v[k], 0.0f, 1.0f);
+                v = v < zero ? zero : (one < v ? one : v);  // std::clamp(v, 0, 1) per lane
+                std::memcpy(out + c, &v, sizeof(v));
             }
         }
         for (; c < n; ++c) out[c] = transmittance(se[c], mu);
