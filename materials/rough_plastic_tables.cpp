@@ -249,14 +249,27 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
                          1.0f - 2.5f * t2 + 1.5f * t3,      // eq. 2.47
                          0.5f * t + 2.0f * t2 - 1.5f * t3,  // eq. 2.48
                          -0.5f * t2 + 0.5f * t3};           // eq. 2.49
-        V4 d = zero;
+        // Lanes to plain arrays for the per-lane gathers and stores (element access to vector
+        // registers compiles to long shuffle sequences).
+        int iv[4];
+        float wv[4][4];  // wv[m][k]: weight of node i − 1 + m, lane k
+        std::memcpy(iv, &i, sizeof(iv));
+        for (int m = 0; m < 4; ++m) std::memcpy(wv[m], &w[m], sizeof(wv[m]));
         bool interior[4];
-        V4 tdNodes[4] = {zero, zero, zero, zero};  // tdNodes[m][k]: Td of node i − 1 + m of lane k
+        float tdn[4][4] = {};  // tdn[m][k]: Td of node i − 1 + m, lane k
         for (int k = 0; k < 4; ++k) {
-            interior[k] = i[k] >= 1 && i[k] + 2 <= nEta_ - 1;
-            for (int m = 0; m < 4; ++m) tdNodes[m][k] = interior[k] ? diffuse_[size_t(i[k] - 1 + m)] : 0.0f;
+            interior[k] = iv[k] >= 1 && iv[k] + 2 <= nEta_ - 1;
+            if (interior[k])
+                for (int m = 0; m < 4; ++m) tdn[m][k] = diffuse_[size_t(iv[k] - 1 + m)];
         }
-        for (int m = 0; m < 4; ++m) d = d + w[m] * tdNodes[m];  // diffuse: Σ w_m Td[i − 1 + m] in order
+        V4 d = zero;
+        for (int m = 0; m < 4; ++m) {  // diffuse: Σ w_m Td[i − 1 + m] in order
+            V4 tm;
+            std::memcpy(&tm, tdn[m], sizeof(tm));
+            d = d + w[m] * tm;
+        }
+        float dv[4];
+        std::memcpy(dv, &d, sizeof(dv));
         for (int k = 0; k < 4; ++k) {
             RoughStencil& s = se[c + k];
             if (!interior[k]) {  // ghost nodes (or NaN): the scalar code
@@ -265,17 +278,18 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
                 if (rows) rows[c + k].row = nullptr;
                 continue;
             }
-            for (int m = 0; m < 4; ++m) {
-                s.idx[m] = i[k] - 1 + m;
-                s.w[m] = w[m][k];
-            }
-            s.count = 4;
-            td[c + k] = std::clamp(d[k], 0.0f, 1.0f);
-            if (rows) {
-                RoughEtaRows& r = rows[c + k];
-                r.row = &ext_[size_t(i[k] - 1) * size_t(nMu_)];
+            td[c + k] = std::clamp(dv[k], 0.0f, 1.0f);
+            if (!rows) {
                 for (int m = 0; m < 4; ++m) {
-                    const float wm = w[m][k];
+                    s.idx[m] = iv[k] - 1 + m;
+                    s.w[m] = wv[m][k];
+                }
+                s.count = 4;
+            } else {  // the prepared rows replace se[c + k] (transmittances reads se only where row == nullptr)
+                RoughEtaRows& r = rows[c + k];
+                r.row = &ext_[size_t(iv[k] - 1) * size_t(nMu_)];
+                for (int m = 0; m < 4; ++m) {
+                    const float wm = wv[m][k];
                     r.w[m] = RoughV4{wm, wm, wm, wm};
                 }
             }

@@ -155,8 +155,9 @@ public:
     /// operations of the scalar etaCoord / roughCatmullRom / diffuse in the same order (IEEE
     /// element-wise, no contraction), so se[c] == etaStencil(eta[c]) and td[c] == diffuse(se[c])
     /// bit for bit; a lane whose stencil is not interior (η at the ends of the table, NaN) and the
-    /// n mod 4 last channels are computed by the scalar code. rows (optional): the same stencils
-    /// prepared for transmittances().
+    /// n mod 4 last channels are computed by the scalar code. rows (optional): the interior
+    /// stencils prepared for transmittances() instead; then se[c] is written only where
+    /// rows[c].row == nullptr (the only se[c] transmittances() reads).
     void etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows = nullptr) const;
     float diffuse(const RoughStencil& se) const {
         float td = 0;
@@ -219,7 +220,7 @@ public:
             const RoughV4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
             for (; c + 4 <= n; c += 4) {
                 if (!rows[c].row || !rows[c + 1].row || !rows[c + 2].row || !rows[c + 3].row) {
-                    for (int k = 0; k < 4; ++k) out[c + k] = transmittance(se[c + k], mu);
+                    for (int k = 0; k < 4; ++k) out[c + k] = channelTransmittance(se, rows, c + k, mu);
                     continue;
                 }
                 RoughV4 node[4];  // node[k][l]: channel c + k, μ node b + l (lineNode)
@@ -245,7 +246,21 @@ public:
                 std::memcpy(out + c, &v, sizeof(v));
             }
         }
-        for (; c < n; ++c) out[c] = transmittance(se[c], mu);
+        for (; c < n; ++c) out[c] = channelTransmittance(se, rows, c, mu);
+    }
+    /// T of channel c of transmittances(): from its prepared rows (the lineNode sums of
+    /// transmittance(), same order) or from se[c].
+    __attribute__((noinline)) float channelTransmittance(const RoughStencil* se, const RoughEtaRows* rows, int c,
+                                                         const RoughStencil& mu) const {
+        if (!rows || !rows[c].row) return transmittance(se[c], mu);
+        const RoughEtaRows& r = rows[c];
+        float v = 0;
+        for (int k = 0; k < mu.count; ++k) {
+            float node = 0.0f;
+            for (int i = 0; i < 4; ++i) node += r.w[i][0] * r.row[size_t(i) * size_t(nMu_) + size_t(mu.idx[k])];
+            v += mu.w[k] * node;
+        }
+        return std::clamp(v, 0.0f, 1.0f);
     }
 
 private:

@@ -276,7 +276,7 @@ TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
     // the scalar remainder), η inside, at and beyond the table ends (ghost stencils), on grid
     // nodes, random η, and μ inside and at the ends of the μ range.
     Pcg32 rng(29, 5);
-    int checked = 0;
+    int checked = 0, preparedTotal = 0;
     for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
         const RoughTransmittanceTables& t = roughPlasticTables(type);
         for (float alpha : {0.0f, 0.124f, 0.6f, 1.0f}) {
@@ -296,24 +296,33 @@ TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
                 at.etaStencils(eta, n, se, td, rows);
                 float td2[kMaxWavelengths];
                 RoughStencil se2[kMaxWavelengths];
-                at.etaStencils(eta, n, se2, td2);  // without the prepared rows: the same stencils
+                at.etaStencils(eta, n, se2, td2);  // without the prepared rows: every se[c] written
                 for (int c = 0; c < n; ++c) ASSERT_EQ(td2[c], td[c]);
+                int prepared = 0;
                 for (int c = 0; c < n; ++c) {
                     const RoughStencil ref = at.etaStencil(eta[c]);
-                    ASSERT_EQ(se[c].count, ref.count) << eta[c];
+                    ASSERT_EQ(se2[c].count, ref.count) << eta[c];
                     for (int k = 0; k < ref.count; ++k) {
-                        ASSERT_EQ(se[c].idx[k], ref.idx[k]) << eta[c];
-                        ASSERT_EQ(se[c].w[k], ref.w[k]) << eta[c];
+                        ASSERT_EQ(se2[c].idx[k], ref.idx[k]) << eta[c];
+                        ASSERT_EQ(se2[c].w[k], ref.w[k]) << eta[c];
                     }
                     ASSERT_EQ(td[c], at.diffuse(ref)) << eta[c];
+                    if (rows[c].row) {
+                        ++prepared;
+                        ASSERT_EQ(ref.count, 4) << eta[c];  // only interior stencils are prepared
+                    } else {
+                        ASSERT_EQ(se[c].count, ref.count) << eta[c];
+                        for (int k = 0; k < ref.count; ++k) ASSERT_EQ(se[c].w[k], ref.w[k]) << eta[c];
+                    }
                 }
+                preparedTotal += prepared;
                 for (float mu : mus) {
                     const RoughStencil sm = roughMuStencil(mu, at.nMu());
                     float out[kMaxWavelengths], outScalar[kMaxWavelengths];
                     at.transmittances(se, rows, n, sm, out);
-                    at.transmittances(se, nullptr, n, sm, outScalar);
+                    at.transmittances(se2, nullptr, n, sm, outScalar);
                     for (int c = 0; c < n; ++c) {
-                        ASSERT_EQ(out[c], at.transmittance(se[c], sm)) << eta[c] << " " << mu << " n " << n;
+                        ASSERT_EQ(out[c], at.transmittance(at.etaStencil(eta[c]), sm)) << eta[c] << " " << mu << " n " << n;
                         ASSERT_EQ(outScalar[c], out[c]);
                         ++checked;
                     }
@@ -322,4 +331,5 @@ TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
         }
     }
     EXPECT_GT(checked, 100000);
+    EXPECT_GT(preparedTotal, 1000);  // the SIMD path was exercised
 }
