@@ -20,6 +20,7 @@
 //   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -144,9 +145,10 @@ private:
     /// (materials/material.h), so the mutable cache is never shared between threads.
     struct WoTerms {
         vec3 wo{std::numeric_limits<float>::quiet_NaN()};  // key (NaN: never equal, first call fills)
-        vec3 woC{0.0f};  // wo in the coat frame
-        float g1o = 0;   // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
-        float ps = 0;    // specular sampling probability (roughCoatSpecularProbability)
+        // Filled by woTerms() before any read (left uninitialised: the BSDF is built per shading point).
+        vec3 woC;   // wo in the coat frame
+        float g1o;  // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
+        float ps;   // specular sampling probability (roughCoatSpecularProbability)
         float tO[kMaxWavelengths];     // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
         float cosTo[kMaxWavelengths];  // cosine of wo refracted into the film per channel (eq. 3.20)
     };
@@ -156,7 +158,7 @@ private:
     /// eval), so the second call reuses them (pure functions of the pair: the same values).
     struct WiTerms {
         vec3 wo{std::numeric_limits<float>::quiet_NaN()}, wi{std::numeric_limits<float>::quiet_NaN()};  // key
-        vec3 wiC{0.0f};
+        vec3 wiC;            // filled by wiTerms() before any read
         RoughCoatHalf half;  // of (woC, wiC)
     };
 
@@ -264,18 +266,29 @@ public:
         q.tilted1 = tilted1_;
         q.phase = phase_;
         q.n = n;
-        const SampledSpectrum etaT = etaT_.sample(wl), lambda = channelLambdas(wl, lambdas_);
         const SampledSpectrum ws = ws_->eval(sp.tex, wl), wd = wd_->eval(sp.tex, wl);
         using Channel = ProposedBSDF::Channel;
-        auto* ch = static_cast<Channel*>(arena.allocate(sizeof(Channel) * size_t(n), alignof(Channel)));
+        // One arena block for the per-channel arrays: channels, then (spectral, constant α) the η
+        // stencils and their prepared rows.
+        static_assert(alignof(RoughEtaRows) >= alignof(Channel) && alignof(RoughEtaRows) >= alignof(RoughStencil));
+        const size_t chBytes = (sizeof(Channel) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
+        const size_t seBytes = (sizeof(RoughStencil) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
+        const bool spectralStencils = atAlpha_ && !(wl.isRGB() && n == 3);
+        auto* block = static_cast<std::byte*>(arena.allocate(
+            chBytes + (spectralStencils ? seBytes + sizeof(RoughEtaRows) * size_t(n) : 0), alignof(RoughEtaRows)));
+        auto* ch = reinterpret_cast<Channel*>(block);
         float eta[kMaxWavelengths], wdC[kMaxWavelengths];
         float wsSum = 0.0f, wdSum = 0.0f;  // in channel order, as SampledSpectrum::average
+        const bool rgb = wl.isRGB();
         for (int c = 0; c < n; ++c) {
-            eta[c] = etaT[c] / etaI_;
+            // η_t and λ of the channel: ChannelIOR::sample and channelLambdas, entry c
+            const float etaT = rgb ? etaT_.channel(c) : etaT_.at(wl.lambda(c));
+            const float lambda = rgb ? lambdas_[c] : wl.lambda(c);
+            eta[c] = etaT / etaI_;
             const float inv = 1.0f / eta[c];
             ch[c].eta = eta[c];
             ch[c].invEta2 = inv * inv;
-            ch[c].phaseScale = kPi * etaT[c] * q.d / lambda[c];  // eq. 3.20 without the cosines
+            ch[c].phaseScale = kPi * etaT * q.d / lambda;  // eq. 3.20 without the cosines
             ch[c].ws = std::max(0.0f, ws[c]);                    // clampZero
             wdC[c] = std::max(0.0f, wd[c]);
             wsSum += ch[c].ws;
@@ -287,15 +300,21 @@ public:
         if (atAlpha_) {
             const int nMu = atAlpha_->nMu();
             q.coatT.nMu = nMu;
-            if (wl.isRGB() && n == 3) {  // the per-material lines of the three fixed channel η
+            if (!spectralStencils) {  // RGB mode: the per-material lines of the three fixed channel η
                 q.coatT.lines = rgbLines_.data();
-                for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
+                for (int c = 0; c < n; ++c) {
+                    ch[c].fdr = rgbFdr_[c];
+                    ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
+                }
             } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
-                auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
-                auto* rows = static_cast<RoughEtaRows*>(arena.allocate(sizeof(RoughEtaRows) * size_t(n), alignof(RoughEtaRows)));
+                auto* se = reinterpret_cast<RoughStencil*>(block + chBytes);
+                auto* rows = reinterpret_cast<RoughEtaRows*>(block + chBytes + seBytes);
                 float td[kMaxWavelengths];
                 atAlpha_->etaStencils(eta, n, se, td, rows);  // = etaStencil(η_c), diffuse(·) per channel
-                for (int c = 0; c < n; ++c) ch[c].fdr = 1.0f - td[c];  // eq. 3.19
+                for (int c = 0; c < n; ++c) {
+                    ch[c].fdr = 1.0f - td[c];                                    // eq. 3.19
+                    ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
+                }
                 q.coatT.atAlpha = &*atAlpha_;
                 q.coatT.etaStencils = se;
                 q.coatT.etaRows = rows;
@@ -306,10 +325,10 @@ public:
             for (int c = 0; c < n; ++c) {
                 new (&lines[c]) Line(tables_->line(eta[c], alpha));
                 ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(eta[c], alpha);  // eq. 3.19
+                ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);                  // wd/(1 − Rd)
             }
             q.coatT.stencils = lines;
         }
-        for (int c = 0; c < n; ++c) ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
         q.ch = ch;
         return bsdf;
     }

@@ -208,8 +208,8 @@ public:
     /// back to stay inside the row at the upper end), then a 4×4 transpose and the μ sum with
     /// lane = channel, the same operations in the same order per channel, so out[c] ==
     /// transmittance(se[c], mu) exactly. Other channels take transmittance().
-    void transmittances(const RoughStencil* se, const RoughEtaRows* rows, int n, const RoughStencil& mu,
-                        float* out) const {
+    __attribute__((always_inline)) void transmittances(const RoughStencil* se, const RoughEtaRows* rows, int n,
+                                                       const RoughStencil& mu, float* out) const {
         int c = 0;
         bool consecutive = rows && nMu_ >= 4 && mu.count >= 1 && mu.count <= 4;
         for (int j = 1; consecutive && j < mu.count; ++j) consecutive = mu.idx[j] == mu.idx[0] + j;
