@@ -234,6 +234,10 @@ public:
         }
         ws_ = p.getSpectrumTexture("ws", SpectrumKind::Reflectance, 0.6f);
         wd_ = p.getSpectrumTexture("wd", SpectrumKind::Reflectance, 0.4f);
+        // Weights that are one number at every point and wavelength (the thesis' ws, wd): read
+        // them once here instead of evaluating the textures per shading point (the same values:
+        // ConstantSpectrum::sample fills every entry with its value).
+        constWeights_ = constantValue(*ws_, &wsConst_) && constantValue(*wd_, &wdConst_);
         const bool phase = p.getBool("phase", true);
         const std::string mode = p.getString("phase_mode", "total");
         if (mode != "total" && mode != "per_reflection")
@@ -266,7 +270,11 @@ public:
         q.tilted1 = tilted1_;
         q.phase = phase_;
         q.n = n;
-        const SampledSpectrum ws = ws_->eval(sp.tex, wl), wd = wd_->eval(sp.tex, wl);
+        SampledSpectrum ws, wd;  // unused with constWeights_
+        if (!constWeights_) {
+            ws = ws_->eval(sp.tex, wl);
+            wd = wd_->eval(sp.tex, wl);
+        }
         using Channel = ProposedBSDF::Channel;
         // One arena block for the per-channel arrays: channels, then (spectral, constant α) the η
         // stencils and their prepared rows.
@@ -289,8 +297,8 @@ public:
             ch[c].eta = eta[c];
             ch[c].invEta2 = inv * inv;
             ch[c].phaseScale = kPi * etaT * q.d / lambda;  // eq. 3.20 without the cosines
-            ch[c].ws = std::max(0.0f, ws[c]);                    // clampZero
-            wdC[c] = std::max(0.0f, wd[c]);
+            ch[c].ws = std::max(0.0f, constWeights_ ? wsConst_ : ws[c]);  // clampZero
+            wdC[c] = std::max(0.0f, constWeights_ ? wdConst_ : wd[c]);
             wsSum += ch[c].ws;
             wdSum += wdC[c];
         }
@@ -334,6 +342,13 @@ public:
     }
 
 private:
+    /// The value of a texture that is a ConstantSpectrum everywhere.
+    static bool constantValue(const SpectrumTexture& t, float* v) {
+        const auto* c = dynamic_cast<const ConstantSpectrum*>(t.constantSpectrum());
+        if (c) *v = c->value();
+        return c != nullptr;
+    }
+
     Frame coat_, base_;
     vec3 n1_, lambdas_;
     bool tilted0_, tilted1_;
@@ -342,6 +357,8 @@ private:
     FloatTexturePtr thickness_, alpha_;
     MicrofacetType type_;
     SpectrumTexturePtr ws_, wd_;
+    bool constWeights_ = false;  // ws and wd are ConstantSpectrum values: wsConst_, wdConst_
+    float wsConst_ = 0.0f, wdConst_ = 0.0f;
     PhaseMode phase_;
     const RoughTransmittanceTables* tables_;
     std::optional<RoughTablesAtAlpha> atAlpha_;  // constant α only

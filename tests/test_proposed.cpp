@@ -421,3 +421,50 @@ TEST(Proposed, PairCacheGivesTheSameValuesAsFreshBSDFs) {
         EXPECT_GT(nonzero, 500);
     }
 }
+
+TEST(Proposed, ConstantWeightsEqualTexturedWeights) {
+    // ws and wd given as numbers are read once by the material (constWeights_); the same numbers
+    // through checkerboard textures with equal colours take the per-shading-point texture path.
+    // eval, pdf and sample must agree bit for bit (RGB mode, spectral N = 4 and 5).
+    auto checker = [](float v) {
+        auto t = std::make_shared<Properties>("texture", "checkerboard", SourceLocation{"<test>", 0});
+        t->set("color0", v, SourceLocation{"<test>", 0});
+        t->set("color1", v, SourceLocation{"<test>", 0});
+        return PropertyValue(t);
+    };
+    auto props = [&](PropertyValue ws, PropertyValue wd) {
+        return makeProps("proposed", {{"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}},
+                                      {"thickness", 76.0f},
+                                      {"n0", VectorValue{vec3(0.17365f, 0, 0.98481f)}},
+                                      {"alpha", 0.124f},
+                                      {"ws", ws},
+                                      {"wd", wd}});
+    };
+    const auto constProps = props(0.55f, 0.35f), texProps = props(checker(0.55f), checker(0.35f));
+    for (SampledWavelengths wl : {SampledWavelengths::rgb(vec3(645, 525, 445)), SampledWavelengths::sampleVisible(0.4f, 4),
+                                  SampledWavelengths::sampleVisible(0.9f, 5)}) {
+        auto fast = makeBSDF(*constProps, wl), general = makeBSDF(*texProps, wl);
+        Pcg32 rng(9, 9);
+        int nonzero = 0;
+        for (const auto& [wo, wi] : randomPairs(300, 43)) {
+            const SampledSpectrum a = fast.bsdf->eval(wo, wi, TransportMode::Radiance);
+            const SampledSpectrum b = general.bsdf->eval(wo, wi, TransportMode::Radiance);
+            for (int c = 0; c < a.size(); ++c) {
+                ASSERT_EQ(a[c], b[c]);
+                nonzero += a[c] > 0;
+            }
+            ASSERT_EQ(fast.bsdf->pdf(wo, wi, TransportMode::Radiance), general.bsdf->pdf(wo, wi, TransportMode::Radiance));
+            const float uc = rng.uniform();
+            const vec2 u(rng.uniform(), rng.uniform());
+            const auto sa = fast.bsdf->sample(wo, uc, u, TransportMode::Radiance);
+            const auto sb = general.bsdf->sample(wo, uc, u, TransportMode::Radiance);
+            ASSERT_EQ(bool(sa), bool(sb));
+            if (sa) {
+                ASSERT_EQ(sa->wi, sb->wi);
+                ASSERT_EQ(sa->pdf, sb->pdf);
+                for (int c = 0; c < a.size(); ++c) ASSERT_EQ(sa->f[c], sb->f[c]);
+            }
+        }
+        EXPECT_GT(nonzero, 300);
+    }
+}
