@@ -15,7 +15,9 @@
 #include <mutex>
 
 #include <unistd.h>
+#if defined(__SSE__)
 #include <xmmintrin.h>
+#endif
 
 #include "core/error.h"
 #include "materials/fresnel.h"
@@ -239,7 +241,13 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
         std::memcpy(&e, eta + c, sizeof(e));
         V4 u = (e - T::kEtaMin) / (T::kEtaMax - T::kEtaMin);
         u = u < zero ? zero : (one < u ? one : u);  // std::clamp(u, 0, 1)
+#if defined(__SSE__)
         V4 x = V4(_mm_sqrt_ps(__m128(u))) * last;  // etaCoord
+#else
+        V4 x;
+        for (int k = 0; k < 4; ++k) x[k] = std::sqrt(u[k]);
+        x = x * last;  // etaCoord
+#endif
         x = x < zero ? zero : (lastV < x ? lastV : x);  // roughCatmullRom: std::clamp(x, 0, n − 1)
         I4 i = __builtin_convertvector(x, I4);
         const I4 iMax = {nEta_ - 2, nEta_ - 2, nEta_ - 2, nEta_ - 2};
