@@ -20,6 +20,7 @@
 //   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -38,9 +39,11 @@ class ProposedBSDF final : public BSDF {
 public:
     /// Per-channel constants of one shading point.
     struct Channel {
-        float eta, etaT, lambda;  // η_c = η_t,c/η_i, η_t,c, λ_c (nm)
-        float ws, wdEff;          // ws and the effective diffuse weight wd/(1 − Rd) (eq. 3.16)
-        float fdr;                // Rd = Fdr = 1 − Td(η_c, α) (eq. 3.19)
+        float eta;         // η_c = η_t,c/η_i
+        float invEta2;     // (1/η_c)², the Snell factor of filmCosine
+        float phaseScale;  // π η_t,c d/λ_c, the factor of (cosθti + cosθto) in eq. 3.20
+        float ws, wdEff;   // ws and the effective diffuse weight wd/(1 − Rd) (eq. 3.16)
+        float fdr;         // Rd = Fdr = 1 − Td(η_c, α) (eq. 3.19)
     };
     struct Params {
         RoughCoatChannels coatT;  // T(η_c, α, μ) per channel (collapsed lines or table stencils)
@@ -56,7 +59,9 @@ public:
         float wsAvg, wdAvg;  // channel averages of ws and wd (sampling probability)
     };
 
-    explicit ProposedBSDF(const Params& p) : p_(p) {}
+    ProposedBSDF() = default;
+    /// The parameters, filled in place by ProposedMaterial::getBSDF (no copy of Params).
+    Params& params() { return p_; }
 
     vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
 
@@ -65,9 +70,10 @@ public:
         SampledSpectrum f(n);
         if (wo.z <= 0 || wi.z <= 0) return f;
         const WoTerms& o = woTerms(wo);
-        const vec3 woC = o.woC, wiC = toCoat(wi);
+        const WiTerms& t = wiTerms(o, wi);
+        const vec3 woC = o.woC, wiC = t.wiC;
         if (woC.z <= 0 || wiC.z <= 0) return f;
-        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o);
+        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o, t.half);
         float tI[kMaxWavelengths];  // T12 per channel (eq. 2.52); T21 is o.tO (eq. 2.53)
         p_.coatT.transmittance(wiC.z, n, tI);
         for (int c = 0; c < n; ++c) {
@@ -81,9 +87,9 @@ public:
                 f[c] = fr + ft;
                 continue;
             }
-            const float cosTi = filmCosine(eta, wiC.z);
+            const float cosTi = filmCosine(k.invEta2, wiC.z);
             const float cosTo = o.cosTo[c];
-            const float phi = kPi * k.etaT * p_.d / k.lambda * (cosTi + cosTo);  // eq. 3.20
+            const float phi = k.phaseScale * (cosTi + cosTo);  // eq. 3.20
             const float cos2phi = std::cos(2.0f * phi);
             if (p_.phase == PhaseMode::Total) {
                 f[c] = fr + ft + 2.0f * cos2phi * std::sqrt(fr * ft);  // eqs. 3.21–3.22
@@ -125,7 +131,8 @@ public:
         if (o.woC.z <= 0) return 0.0f;
         const float ps = o.ps;
         const float cosB = p_.tilted1 ? glm::dot(wi, p_.n1) : wi.z;
-        return ps * roughCoatSpecularPdf(p_.dist, o.woC, toCoat(wi), o.g1o) + (1.0f - ps) * cosineHemispherePdf(cosB);
+        const WiTerms& t = wiTerms(o, wi);
+        return ps * roughCoatSpecularPdf(o.woC, o.g1o, t.half) + (1.0f - ps) * cosineHemispherePdf(cosB);
     }
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
@@ -138,12 +145,32 @@ private:
     /// (materials/material.h), so the mutable cache is never shared between threads.
     struct WoTerms {
         vec3 wo{std::numeric_limits<float>::quiet_NaN()};  // key (NaN: never equal, first call fills)
-        vec3 woC{0.0f};  // wo in the coat frame
-        float g1o = 0;   // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
-        float ps = 0;    // specular sampling probability (roughCoatSpecularProbability)
+        // Filled by woTerms() before any read (left uninitialised: the BSDF is built per shading point).
+        vec3 woC;   // wo in the coat frame
+        float g1o;  // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
+        float ps;   // specular sampling probability (roughCoatSpecularProbability)
         float tO[kMaxWavelengths];     // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
         float cosTo[kMaxWavelengths];  // cosine of wo refracted into the film per channel (eq. 3.20)
     };
+
+    /// What depends on the pair (wo, wi): wi in the coat frame, the half vector and D(h). eval and
+    /// pdf of one pair follow each other (next-event estimation: eval then pdf; sample: pdf then
+    /// eval), so the second call reuses them (pure functions of the pair: the same values).
+    struct WiTerms {
+        vec3 wo{std::numeric_limits<float>::quiet_NaN()}, wi{std::numeric_limits<float>::quiet_NaN()};  // key
+        vec3 wiC;            // filled by wiTerms() before any read
+        RoughCoatHalf half;  // of (woC, wiC)
+    };
+
+    const WiTerms& wiTerms(const WoTerms& o, const vec3& wi) const {
+        WiTerms& t = wi_;
+        if (wi == t.wi && o.wo == t.wo) return t;
+        t.wo = o.wo;
+        t.wi = wi;
+        t.wiC = toCoat(wi);
+        t.half = roughCoatHalf(p_.dist, o.woC, t.wiC);
+        return t;
+    }
 
     const WoTerms& woTerms(const vec3& wo) const {
         WoTerms& o = wo_;
@@ -157,19 +184,18 @@ private:
         float t = 0.0f;
         for (int c = 0; c < n; ++c) t += o.tO[c];
         o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
-        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].eta, o.woC.z);
+        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].invEta2, o.woC.z);
         return o;
     }
 
     /// Cosine of a direction (cosine cosC about n0) refracted specularly into the film of relative
-    /// index eta (eqs. 3.1–3.2 reading; Snell's law).
-    static float filmCosine(float eta, float cosC) {
-        const float inv = 1.0f / eta;
-        return safeSqrt(1.0f - inv * inv * (1.0f - cosC * cosC));
-    }
+    /// index η (eqs. 3.1–3.2 reading; Snell's law: cos²θt = 1 − (1/η)² sin²θ), from invEta2 =
+    /// (1/η)·(1/η) of the channel (the same float operations as computing 1/η here).
+    static float filmCosine(float invEta2, float cosC) { return safeSqrt(1.0f - invEta2 * (1.0f - cosC * cosC)); }
 
     Params p_;
     mutable WoTerms wo_;
+    mutable WiTerms wi_;
 };
 
 class ProposedMaterial final : public Material {
@@ -208,6 +234,10 @@ public:
         }
         ws_ = p.getSpectrumTexture("ws", SpectrumKind::Reflectance, 0.6f);
         wd_ = p.getSpectrumTexture("wd", SpectrumKind::Reflectance, 0.4f);
+        // Weights that are one number at every point and wavelength (the thesis' ws, wd): read
+        // them once here instead of evaluating the textures per shading point (the same values:
+        // ConstantSpectrum::sample fills every entry with its value).
+        constWeights_ = constantValue(*ws_, &wsConst_) && constantValue(*wd_, &wdConst_);
         const bool phase = p.getBool("phase", true);
         const std::string mode = p.getString("phase_mode", "total");
         if (mode != "total" && mode != "per_reflection")
@@ -228,7 +258,8 @@ public:
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const int n = wl.size();
-        ProposedBSDF::Params q;
+        ProposedBSDF* bsdf = arena.make<ProposedBSDF>();
+        ProposedBSDF::Params& q = bsdf->params();
         const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
         q.dist = MicrofacetDistribution(type_, alpha, alpha);
         q.d = std::max(0.0f, thickness_->eval(sp.tex));
@@ -239,49 +270,85 @@ public:
         q.tilted1 = tilted1_;
         q.phase = phase_;
         q.n = n;
-        const SampledSpectrum etaT = etaT_.sample(wl), lambda = channelLambdas(wl, lambdas_);
-        const SampledSpectrum ws = clampZero(ws_->eval(sp.tex, wl)), wd = clampZero(wd_->eval(sp.tex, wl));
-        q.wsAvg = ws.average();
-        q.wdAvg = wd.average();
-        using Channel = ProposedBSDF::Channel;
-        auto* ch = static_cast<Channel*>(arena.allocate(sizeof(Channel) * size_t(n), alignof(Channel)));
-        for (int c = 0; c < n; ++c) {
-            ch[c].eta = etaT[c] / etaI_;
-            ch[c].etaT = etaT[c];
-            ch[c].lambda = lambda[c];
-            ch[c].ws = ws[c];
+        SampledSpectrum ws, wd;  // unused with constWeights_
+        if (!constWeights_) {
+            ws = ws_->eval(sp.tex, wl);
+            wd = wd_->eval(sp.tex, wl);
         }
+        using Channel = ProposedBSDF::Channel;
+        // One arena block for the per-channel arrays: channels, then (spectral, constant α) the η
+        // stencils and their prepared rows.
+        static_assert(alignof(RoughEtaRows) >= alignof(Channel) && alignof(RoughEtaRows) >= alignof(RoughStencil));
+        const size_t chBytes = (sizeof(Channel) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
+        const size_t seBytes = (sizeof(RoughStencil) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
+        const bool spectralStencils = atAlpha_ && !(wl.isRGB() && n == 3);
+        auto* block = static_cast<std::byte*>(arena.allocate(
+            chBytes + (spectralStencils ? seBytes + sizeof(RoughEtaRows) * size_t(n) : 0), alignof(RoughEtaRows)));
+        auto* ch = reinterpret_cast<Channel*>(block);
+        float eta[kMaxWavelengths], wdC[kMaxWavelengths];
+        float wsSum = 0.0f, wdSum = 0.0f;  // in channel order, as SampledSpectrum::average
+        const bool rgb = wl.isRGB();
+        for (int c = 0; c < n; ++c) {
+            // η_t and λ of the channel: ChannelIOR::sample and channelLambdas, entry c
+            const float etaT = rgb ? etaT_.channel(c) : etaT_.at(wl.lambda(c));
+            const float lambda = rgb ? lambdas_[c] : wl.lambda(c);
+            eta[c] = etaT / etaI_;
+            const float inv = 1.0f / eta[c];
+            ch[c].eta = eta[c];
+            ch[c].invEta2 = inv * inv;
+            ch[c].phaseScale = kPi * etaT * q.d / lambda;  // eq. 3.20 without the cosines
+            ch[c].ws = std::max(0.0f, constWeights_ ? wsConst_ : ws[c]);  // clampZero
+            wdC[c] = std::max(0.0f, constWeights_ ? wdConst_ : wd[c]);
+            wsSum += ch[c].ws;
+            wdSum += wdC[c];
+        }
+        q.wsAvg = n > 0 ? wsSum / float(n) : 0.0f;
+        q.wdAvg = n > 0 ? wdSum / float(n) : 0.0f;
         q.coatT.tables = tables_;
         if (atAlpha_) {
             const int nMu = atAlpha_->nMu();
             q.coatT.nMu = nMu;
-            if (wl.isRGB() && n == 3) {  // the per-material lines of the three fixed channel η
+            if (!spectralStencils) {  // RGB mode: the per-material lines of the three fixed channel η
                 q.coatT.lines = rgbLines_.data();
-                for (int c = 0; c < n; ++c) ch[c].fdr = rgbFdr_[c];
-            } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
-                auto* se = static_cast<RoughStencil*>(arena.allocate(sizeof(RoughStencil) * size_t(n), alignof(RoughStencil)));
                 for (int c = 0; c < n; ++c) {
-                    se[c] = atAlpha_->etaStencil(ch[c].eta);
-                    ch[c].fdr = 1.0f - atAlpha_->diffuse(se[c]);  // eq. 3.19
+                    ch[c].fdr = rgbFdr_[c];
+                    ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
+                }
+            } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
+                auto* se = reinterpret_cast<RoughStencil*>(block + chBytes);
+                auto* rows = reinterpret_cast<RoughEtaRows*>(block + chBytes + seBytes);
+                float td[kMaxWavelengths];
+                atAlpha_->etaStencils(eta, n, se, td, rows);  // = etaStencil(η_c), diffuse(·) per channel
+                for (int c = 0; c < n; ++c) {
+                    ch[c].fdr = 1.0f - td[c];                                    // eq. 3.19
+                    ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
                 }
                 q.coatT.atAlpha = &*atAlpha_;
                 q.coatT.etaStencils = se;
+                q.coatT.etaRows = rows;
             }
         } else {  // textured α: the (η, α) stencils of the full tables
             using Line = RoughTransmittanceTables::Line;
             auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(n), alignof(Line)));
             for (int c = 0; c < n; ++c) {
-                new (&lines[c]) Line(tables_->line(ch[c].eta, alpha));
-                ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(ch[c].eta, alpha);  // eq. 3.19
+                new (&lines[c]) Line(tables_->line(eta[c], alpha));
+                ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(eta[c], alpha);  // eq. 3.19
+                ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);                  // wd/(1 − Rd)
             }
             q.coatT.stencils = lines;
         }
-        for (int c = 0; c < n; ++c) ch[c].wdEff = roughCoatAlbedo(wd[c], ch[c].fdr, false);  // wd/(1 − Rd)
         q.ch = ch;
-        return arena.make<ProposedBSDF>(q);
+        return bsdf;
     }
 
 private:
+    /// The value of a texture that is a ConstantSpectrum everywhere.
+    static bool constantValue(const SpectrumTexture& t, float* v) {
+        const auto* c = dynamic_cast<const ConstantSpectrum*>(t.constantSpectrum());
+        if (c) *v = c->value();
+        return c != nullptr;
+    }
+
     Frame coat_, base_;
     vec3 n1_, lambdas_;
     bool tilted0_, tilted1_;
@@ -290,6 +357,8 @@ private:
     FloatTexturePtr thickness_, alpha_;
     MicrofacetType type_;
     SpectrumTexturePtr ws_, wd_;
+    bool constWeights_ = false;  // ws and wd are ConstantSpectrum values: wsConst_, wdConst_
+    float wsConst_ = 0.0f, wdConst_ = 0.0f;
     PhaseMode phase_;
     const RoughTransmittanceTables* tables_;
     std::optional<RoughTablesAtAlpha> atAlpha_;  // constant α only

@@ -15,6 +15,9 @@
 #include <mutex>
 
 #include <unistd.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #include "core/error.h"
 #include "materials/fresnel.h"
@@ -221,6 +224,91 @@ RoughTablesAtAlpha::RoughTablesAtAlpha(const RoughTransmittanceTables& t, float 
 }
 
 RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmullRom(etaCoord(eta, nEta_), nEta_); }
+
+void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows) const {
+    // Lane-wise the scalar etaCoord, roughCatmullRom (eqs. 2.45–2.49, interior branch) and
+    // diffuse (eq. 2.51); GCC/Clang vector extension (element-wise IEEE operations) and SSE sqrt
+    // (correctly rounded, as std::sqrt).
+    typedef float V4 __attribute__((vector_size(16)));
+    typedef int I4 __attribute__((vector_size(16)));
+    using T = RoughTransmittanceTables;
+    const V4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+    const float last = float(nEta_ - 1);
+    const V4 lastV = {last, last, last, last};
+    int c = 0;
+    for (; c + 4 <= n; c += 4) {
+        V4 e;
+        std::memcpy(&e, eta + c, sizeof(e));
+        V4 u = (e - T::kEtaMin) / (T::kEtaMax - T::kEtaMin);
+        u = u < zero ? zero : (one < u ? one : u);  // std::clamp(u, 0, 1)
+#if defined(__SSE__)
+        V4 x = V4(_mm_sqrt_ps(__m128(u))) * last;  // etaCoord
+#else
+        V4 x;
+        for (int k = 0; k < 4; ++k) x[k] = std::sqrt(u[k]);
+        x = x * last;  // etaCoord
+#endif
+        x = x < zero ? zero : (lastV < x ? lastV : x);  // roughCatmullRom: std::clamp(x, 0, n − 1)
+        I4 i = __builtin_convertvector(x, I4);
+        const I4 iMax = {nEta_ - 2, nEta_ - 2, nEta_ - 2, nEta_ - 2};
+        i = iMax < i ? iMax : i;  // std::min(int(x), n − 2)
+        const V4 t = x - __builtin_convertvector(i, V4), t2 = t * t, t3 = t2 * t;
+        const V4 w[4] = {-0.5f * t + t2 - 0.5f * t3,        // eq. 2.46
+                         1.0f - 2.5f * t2 + 1.5f * t3,      // eq. 2.47
+                         0.5f * t + 2.0f * t2 - 1.5f * t3,  // eq. 2.48
+                         -0.5f * t2 + 0.5f * t3};           // eq. 2.49
+        // Lanes to plain arrays for the per-lane gathers and stores (element access to vector
+        // registers compiles to long shuffle sequences).
+        int iv[4];
+        float wv[4][4];  // wv[m][k]: weight of node i − 1 + m, lane k
+        std::memcpy(iv, &i, sizeof(iv));
+        for (int m = 0; m < 4; ++m) std::memcpy(wv[m], &w[m], sizeof(wv[m]));
+        bool interior[4];
+        float tdn[4][4] = {};  // tdn[m][k]: Td of node i − 1 + m, lane k
+        for (int k = 0; k < 4; ++k) {
+            interior[k] = iv[k] >= 1 && iv[k] + 2 <= nEta_ - 1;
+            if (interior[k])
+                for (int m = 0; m < 4; ++m) tdn[m][k] = diffuse_[size_t(iv[k] - 1 + m)];
+        }
+        V4 d = zero;
+        for (int m = 0; m < 4; ++m) {  // diffuse: Σ w_m Td[i − 1 + m] in order
+            V4 tm;
+            std::memcpy(&tm, tdn[m], sizeof(tm));
+            d = d + w[m] * tm;
+        }
+        float dv[4];
+        std::memcpy(dv, &d, sizeof(dv));
+        for (int k = 0; k < 4; ++k) {
+            RoughStencil& s = se[c + k];
+            if (!interior[k]) {  // ghost nodes (or NaN): the scalar code
+                s = etaStencil(eta[c + k]);
+                td[c + k] = diffuse(s);
+                if (rows) rows[c + k].row = nullptr;
+                continue;
+            }
+            td[c + k] = std::clamp(dv[k], 0.0f, 1.0f);
+            if (!rows) {
+                for (int m = 0; m < 4; ++m) {
+                    s.idx[m] = iv[k] - 1 + m;
+                    s.w[m] = wv[m][k];
+                }
+                s.count = 4;
+            } else {  // the prepared rows replace se[c + k] (transmittances reads se only where row == nullptr)
+                RoughEtaRows& r = rows[c + k];
+                r.row = &ext_[size_t(iv[k] - 1) * size_t(nMu_)];
+                for (int m = 0; m < 4; ++m) {
+                    const float wm = wv[m][k];
+                    r.w[m] = RoughV4{wm, wm, wm, wm};
+                }
+            }
+        }
+    }
+    for (; c < n; ++c) {
+        se[c] = etaStencil(eta[c]);
+        td[c] = diffuse(se[c]);
+        if (rows) rows[c].row = nullptr;  // transmittances() takes the scalar path for these
+    }
+}
 
 float RoughTablesAtAlpha::collapse(float eta, float* line) const {
     const RoughStencil se = etaStencil(eta);

@@ -67,6 +67,17 @@ public:
     static float muNode(int i, int n) { return float(i) / float(n - 1); }
 };
 
+/// Four float lanes (GCC/Clang vector extension: element-wise IEEE operations, SSE on x86-64).
+typedef float RoughV4 __attribute__((vector_size(16)));
+
+/// An interior η stencil (four consecutive η nodes) of a RoughTablesAtAlpha prepared for
+/// RoughTablesAtAlpha::transmittances: the first of its four table rows and its four weights, each
+/// broadcast to four lanes. row == nullptr: not interior (use the RoughStencil).
+struct RoughEtaRows {
+    RoughV4 w[4];
+    const float* row = nullptr;
+};
+
 /// Catmull-Rom stencil (thesis eqs. 2.45–2.50): up to four (index, weight) pairs at grid
 /// coordinate x ∈ [0, n−1]. Ghost nodes beyond the ends are linear extrapolations
 /// (V₋₁ = 2V₀ − V₁, V_n = 2V_{n−1} − V_{n−2}), folded into the weights.
@@ -139,6 +150,15 @@ public:
     /// performs the float operations of collapse() and roughLineTransmittance(), so
     /// transmittance(etaStencil(η), μ) == roughLineTransmittance(line of collapse(η), μ) exactly.
     RoughStencil etaStencil(float eta) const;
+    /// etaStencil(eta[c]) and diffuse() of it for the n channels of one path (spectral mode, n ≤
+    /// kMaxWavelengths), four channels at a time in SIMD lanes. Each lane performs the float
+    /// operations of the scalar etaCoord / roughCatmullRom / diffuse in the same order (IEEE
+    /// element-wise, no contraction), so se[c] == etaStencil(eta[c]) and td[c] == diffuse(se[c])
+    /// bit for bit; a lane whose stencil is not interior (η at the ends of the table, NaN) and the
+    /// n mod 4 last channels are computed by the scalar code. rows (optional): the interior
+    /// stencils prepared for transmittances() instead; then se[c] is written only where
+    /// rows[c].row == nullptr (the only se[c] transmittances() reads).
+    void etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows = nullptr) const;
     float diffuse(const RoughStencil& se) const {
         float td = 0;
         for (int i = 0; i < se.count; ++i) td += se.w[i] * diffuse_[size_t(se.idx[i])];
@@ -176,6 +196,69 @@ public:
             for (int k = 0; k < 4; ++k) v += mu.w[k] * node[k];
         } else {
             for (int k = 0; k < mu.count; ++k) v += mu.w[k] * lineNode(se, mu.idx[k]);
+        }
+        return std::clamp(v, 0.0f, 1.0f);
+    }
+
+    /// transmittance(se[c], mu) for c = 0..n−1 into out[c]: the per-channel T of one path at one μ
+    /// stencil (the μ stencil is shared by all channels). With consecutive μ nodes (every stencil
+    /// of roughMuStencil: four interior nodes, or three at the ends of the μ range) and four
+    /// channels with prepared interior rows (etaStencils), the four channels' sums run side by
+    /// side: the node sums as in transmittance() (lane = μ node; the four loaded nodes are shifted
+    /// back to stay inside the row at the upper end), then a 4×4 transpose and the μ sum with
+    /// lane = channel, the same operations in the same order per channel, so out[c] ==
+    /// transmittance(se[c], mu) exactly. Other channels take transmittance().
+    __attribute__((always_inline)) void transmittances(const RoughStencil* se, const RoughEtaRows* rows, int n,
+                                                       const RoughStencil& mu, float* out) const {
+        int c = 0;
+        bool consecutive = rows && nMu_ >= 4 && mu.count >= 1 && mu.count <= 4;
+        for (int j = 1; consecutive && j < mu.count; ++j) consecutive = mu.idx[j] == mu.idx[0] + j;
+        if (consecutive) {
+            const int b = std::min(mu.idx[0], nMu_ - 4);  // first loaded node
+            const int o = mu.idx[0] - b;                   // lane of the first stencil node
+            const size_t stride = size_t(nMu_);
+            const RoughV4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+            for (; c + 4 <= n; c += 4) {
+                if (!rows[c].row || !rows[c + 1].row || !rows[c + 2].row || !rows[c + 3].row) {
+                    for (int k = 0; k < 4; ++k) out[c + k] = channelTransmittance(se, rows, c + k, mu);
+                    continue;
+                }
+                RoughV4 node[4];  // node[k][l]: channel c + k, μ node b + l (lineNode)
+                for (int k = 0; k < 4; ++k) {
+                    const RoughEtaRows& r = rows[c + k];
+                    const float* p = r.row + b;
+                    RoughV4 acc = zero;
+                    for (int i = 0; i < 4; ++i) {
+                        RoughV4 v;
+                        std::memcpy(&v, p + size_t(i) * stride, sizeof(v));
+                        acc = acc + r.w[i] * v;
+                    }
+                    node[k] = acc;
+                }
+                RoughV4 v = zero;  // lane k = channel c + k
+                for (int j = 0; j < mu.count; ++j) {
+                    const int l = o + j;
+                    const RoughV4 nj = {node[0][l], node[1][l], node[2][l], node[3][l]};
+                    const RoughV4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
+                    v = v + w * nj;
+                }
+                v = v < zero ? zero : (one < v ? one : v);  // std::clamp(v, 0, 1) per lane
+                std::memcpy(out + c, &v, sizeof(v));
+            }
+        }
+        for (; c < n; ++c) out[c] = channelTransmittance(se, rows, c, mu);
+    }
+    /// T of channel c of transmittances(): from its prepared rows (the lineNode sums of
+    /// transmittance(), same order) or from se[c].
+    __attribute__((noinline)) float channelTransmittance(const RoughStencil* se, const RoughEtaRows* rows, int c,
+                                                         const RoughStencil& mu) const {
+        if (!rows || !rows[c].row) return transmittance(se[c], mu);
+        const RoughEtaRows& r = rows[c];
+        float v = 0;
+        for (int k = 0; k < mu.count; ++k) {
+            float node = 0.0f;
+            for (int i = 0; i < 4; ++i) node += r.w[i][0] * r.row[size_t(i) * size_t(nMu_) + size_t(mu.idx[k])];
+            v += mu.w[k] * node;
         }
         return std::clamp(v, 0.0f, 1.0f);
     }

@@ -52,6 +52,32 @@ inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, c
     return g;
 }
 
+/// The half vector of a (wo, wi) pair and D(h), for a BSDF whose eval and pdf see the same pair
+/// (the integrators call both; materials/proposed.cpp caches this per pair). ok == false: wo + wi
+/// vanishes (no h).
+struct RoughCoatHalf {
+    vec3 h{0, 0, 1};
+    bool ok = false;
+    float d = 0.0f;  // D(h) when ok
+};
+inline RoughCoatHalf roughCoatHalf(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi) {
+    RoughCoatHalf r;
+    r.ok = roughCoatHalfVector(wo, wi, r.h);
+    if (r.ok) r.d = dist.D(r.h);
+    return r;
+}
+/// roughCoatGeometry(dist, wo, wi, g1o) with h and D(h) from hd = roughCoatHalf(dist, wo, wi):
+/// the same float operations, so the same result.
+inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, const vec3& wo, const vec3& wi,
+                                           float g1o, const RoughCoatHalf& hd) {
+    RoughCoatGeometry g;
+    if (wo.z <= 0 || wi.z <= 0 || !hd.ok) return RoughCoatGeometry{};
+    g.h = hd.h;
+    const float g1wo = glm::dot(wo, g.h) * wo.z <= 0 ? 0.0f : g1o;  // MicrofacetDistribution::smithG1
+    g.dg = hd.d * (dist.G1(wi, g.h) * g1wo) / (4.0f * wi.z * wo.z);
+    return g;
+}
+
 /// Specular microfacet reflection of the coat without weight: F(wo·h, η) · D G/(4 μi μo)
 /// (eqs. 2.6, 2.36, 3.15).
 inline float roughCoatSpecular(const RoughCoatGeometry& g, const vec3& wo, float eta) {
@@ -74,6 +100,7 @@ struct RoughCoatChannels {
     const float* lines = nullptr;                                // collapsed: channel c at lines + c·nMu
     const RoughTablesAtAlpha* atAlpha = nullptr;                 // with etaStencils: one per channel
     const RoughStencil* etaStencils = nullptr;
+    const RoughEtaRows* etaRows = nullptr;                       // optional: etaStencils prepared for SIMD
     int nMu = 0;
 
     /// T of channels 0..n−1 at μ = cosTheta, into out[0..n).
@@ -81,9 +108,8 @@ struct RoughCoatChannels {
         if (lines) {
             const RoughStencil s = roughMuStencil(cosTheta, nMu);  // shared by all channels
             for (int c = 0; c < n; ++c) out[c] = roughLineTransmittance(lines + size_t(c) * size_t(nMu), s);
-        } else if (etaStencils) {
-            const RoughStencil s = roughMuStencil(cosTheta, nMu);
-            for (int c = 0; c < n; ++c) out[c] = atAlpha->transmittance(etaStencils[c], s);
+        } else if (etaStencils) {  // channels side by side, equal to atAlpha->transmittance per channel
+            atAlpha->transmittances(etaStencils, etaRows, n, roughMuStencil(cosTheta, nMu), out);
         } else {
             for (int c = 0; c < n; ++c) out[c] = tables->transmittance(stencils[c], cosTheta);
         }
@@ -122,6 +148,16 @@ inline float roughCoatSpecularPdf(const MicrofacetDistribution& dist, const vec3
     if (woh <= 0) return 0.0f;
     const float g1 = woh * wo.z <= 0 ? 0.0f : g1o;  // χ+ of smithG1(wo, h)
     return g1 * std::max(0.0f, woh) * dist.D(h) / wo.z / (4.0f * woh);
+}
+
+/// roughCoatSpecularPdf(dist, wo, wi, g1o) with h and D(h) from hd = roughCoatHalf(dist, wo, wi):
+/// the same float operations, so the same result.
+inline float roughCoatSpecularPdf(const vec3& wo, float g1o, const RoughCoatHalf& hd) {
+    if (!hd.ok) return 0.0f;
+    const float woh = glm::dot(wo, hd.h);
+    if (woh <= 0) return 0.0f;
+    const float g1 = woh * wo.z <= 0 ? 0.0f : g1o;  // χ+ of smithG1(wo, h)
+    return g1 * std::max(0.0f, woh) * hd.d / wo.z / (4.0f * woh);
 }
 
 }  // namespace iris

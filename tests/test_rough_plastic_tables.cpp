@@ -268,3 +268,68 @@ TEST(RoughPlasticTables, CatmullRomStencilWeightsSumToOne) {
         }
     }
 }
+
+TEST(RoughPlasticTables, BatchedChannelStencilsEqualScalarOnes) {
+    // RoughTablesAtAlpha::etaStencils and ::transmittances (the SIMD forms the proposed model uses
+    // for the channels of a spectral path) must equal the scalar etaStencil / diffuse /
+    // transmittance bit for bit: for all channel counts 1..kMaxWavelengths (full groups of four and
+    // the scalar remainder), η inside, at and beyond the table ends (ghost stencils), on grid
+    // nodes, random η, and μ inside and at the ends of the μ range.
+    Pcg32 rng(29, 5);
+    int checked = 0, preparedTotal = 0;
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+        const RoughTransmittanceTables& t = roughPlasticTables(type);
+        for (float alpha : {0.0f, 0.124f, 0.6f, 1.0f}) {
+            const RoughTablesAtAlpha at(t, alpha);
+            std::vector<float> pool = {1.0f, 1.0001f, 1.002f, 1.01f, 1.5f, 1.6f, 1.8f, 2.9f, 2.999f, 3.0f, 0.9f, 3.5f};
+            for (int i = 0; i < t.res.nEta; ++i) pool.push_back(RoughTransmittanceTables::etaNode(i, t.res.nEta));
+            std::vector<float> mus = {0.0f, 1e-4f, 0.01f, 0.5f, 0.99f, 0.9999f, 1.0f, -0.1f, 1.2f};
+            for (int i = 0; i < 16; ++i) mus.push_back(rng.uniform());
+            for (int trial = 0; trial < 60; ++trial) {
+                const int n = 1 + trial % kMaxWavelengths;
+                float eta[kMaxWavelengths], td[kMaxWavelengths];
+                for (int c = 0; c < n; ++c)
+                    eta[c] = rng.uniform() < 0.3f ? pool[size_t(rng.uniform() * float(pool.size())) % pool.size()]
+                                                  : 1.0f + 2.0f * rng.uniform();
+                RoughStencil se[kMaxWavelengths];
+                RoughEtaRows rows[kMaxWavelengths];
+                at.etaStencils(eta, n, se, td, rows);
+                float td2[kMaxWavelengths];
+                RoughStencil se2[kMaxWavelengths];
+                at.etaStencils(eta, n, se2, td2);  // without the prepared rows: every se[c] written
+                for (int c = 0; c < n; ++c) ASSERT_EQ(td2[c], td[c]);
+                int prepared = 0;
+                for (int c = 0; c < n; ++c) {
+                    const RoughStencil ref = at.etaStencil(eta[c]);
+                    ASSERT_EQ(se2[c].count, ref.count) << eta[c];
+                    for (int k = 0; k < ref.count; ++k) {
+                        ASSERT_EQ(se2[c].idx[k], ref.idx[k]) << eta[c];
+                        ASSERT_EQ(se2[c].w[k], ref.w[k]) << eta[c];
+                    }
+                    ASSERT_EQ(td[c], at.diffuse(ref)) << eta[c];
+                    if (rows[c].row) {
+                        ++prepared;
+                        ASSERT_EQ(ref.count, 4) << eta[c];  // only interior stencils are prepared
+                    } else {
+                        ASSERT_EQ(se[c].count, ref.count) << eta[c];
+                        for (int k = 0; k < ref.count; ++k) ASSERT_EQ(se[c].w[k], ref.w[k]) << eta[c];
+                    }
+                }
+                preparedTotal += prepared;
+                for (float mu : mus) {
+                    const RoughStencil sm = roughMuStencil(mu, at.nMu());
+                    float out[kMaxWavelengths], outScalar[kMaxWavelengths];
+                    at.transmittances(se, rows, n, sm, out);
+                    at.transmittances(se2, nullptr, n, sm, outScalar);
+                    for (int c = 0; c < n; ++c) {
+                        ASSERT_EQ(out[c], at.transmittance(at.etaStencil(eta[c]), sm)) << eta[c] << " " << mu << " n " << n;
+                        ASSERT_EQ(outScalar[c], out[c]);
+                        ++checked;
+                    }
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked, 100000);
+    EXPECT_GT(preparedTotal, 1000);  // the SIMD path was exercised
+}
