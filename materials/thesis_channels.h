@@ -10,10 +10,10 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <string>
 
 #include "core/properties.h"
+#include "spectral/channel_lerp.h"
 #include "spectral/spectrum.h"
 #include "spectral/wavelengths.h"
 
@@ -26,7 +26,7 @@ class ChannelIOR {
 public:
     ChannelIOR() = default;
     /// Per-channel values at the channel wavelengths.
-    ChannelIOR(const vec3& values, const vec3& lambdas) : values_(values), lambdas_(lambdas) {}
+    ChannelIOR(const vec3& values, const vec3& lambdas) : values_(values), lambdas_(lambdas), lerp_(values, lambdas) {}
     /// A spectrum (evaluated at the channel wavelengths in RGB mode).
     ChannelIOR(SpectrumPtr s, const vec3& lambdas) : spectrum_(std::move(s)), lambdas_(lambdas) {}
 
@@ -46,16 +46,7 @@ public:
     /// Value at wavelength λ: the spectrum, or piecewise-linear through the channel values.
     float at(float lambda) const {
         if (spectrum_) return spectrum_->eval(lambda);
-        std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
-                                                   {lambdas_[2], values_[2]}}};
-        std::sort(pts.begin(), pts.end());
-        if (lambda <= pts[0].first) return pts[0].second;
-        if (lambda >= pts[2].first) return pts[2].second;
-        const int k = lambda <= pts[1].first ? 0 : 1;
-        const float span = pts[k + 1].first - pts[k].first;
-        if (!(span > 0)) return pts[k + 1].second;
-        const float t = (lambda - pts[k].first) / span;
-        return lerp(t, pts[k].second, pts[k + 1].second);
+        return lerp_(lambda);
     }
 
     /// Value of channel c in RGB mode (exactly the given triple when given per channel).
@@ -84,6 +75,7 @@ private:
     vec3 values_{1.5f};
     SpectrumPtr spectrum_;
     vec3 lambdas_ = thesisDefaultWavelengths();
+    ChannelLerp lerp_{values_, lambdas_};  // the per-channel values across the channel wavelengths
 };
 
 /// The wavelength (nm) each path entry stands for: the material's channel wavelengths in RGB

@@ -2,7 +2,6 @@
 #include "spectral/film_coating.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include "core/error.h"
@@ -22,6 +21,7 @@ IorSpec IorSpec::fromProperties(const Properties& p, const std::string& name, fl
     try {
         s.values_ = p.getRGB(name, vec3(def));  // float or per-channel triple
         s.perChannel_ = true;
+        s.lerp_ = ChannelLerp(s.values_, s.lambdas_);
     } catch (const Error&) {
         s.spectrum_ = p.getSpectrum(name, SpectrumKind::Unbounded);
     }
@@ -45,15 +45,7 @@ float IorSpec::at(float lambda) const {
     // A constant (or a triple of equal values): exactly that value, not a lerp of it (whose
     // rounding made e.g. substrate_eta = 1.4 look dispersive to the transmission check).
     if (!perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2])) return values_[0];
-    std::array<std::pair<float, float>, 3> pts{{{lambdas_[0], values_[0]}, {lambdas_[1], values_[1]},
-                                               {lambdas_[2], values_[2]}}};
-    std::sort(pts.begin(), pts.end());
-    if (lambda <= pts[0].first) return pts[0].second;
-    if (lambda >= pts[2].first) return pts[2].second;
-    const int i = lambda <= pts[1].first ? 0 : 1;
-    const float span = pts[i + 1].first - pts[i].first;
-    if (!(span > 0)) return pts[i + 1].second;
-    return lerp((lambda - pts[i].first) / span, pts[i].second, pts[i + 1].second);
+    return lerp_(lambda);
 }
 
 SampledSpectrum IorSpec::sampleAll(const SampledWavelengths& wl) const {

@@ -12,6 +12,7 @@
 #include "core/properties.h"
 #include "core/texture.h"
 #include "materials/dispersion.h"
+#include "spectral/channel_lerp.h"
 #include "spectral/film_airy_batch.h"
 #include "spectral/film_stack.h"
 #include "spectral/sampled_spectrum.h"
@@ -43,6 +44,7 @@ private:
     bool perChannel_ = false;
     vec3 values_{1.0f};
     vec3 lambdas_{645.0f, 525.0f, 445.0f};
+    ChannelLerp lerp_;  // per-channel triples: the values across lambdas_
     SpectrumPtr spectrum_;
     std::shared_ptr<const IOR> ior_;
 };
