@@ -610,8 +610,9 @@ def method_text(ctx):
         L.append(f"6. Wall time of the whole `render experiments/perf/scenes/one_sphere.xml --spp 1 --threads 1` process "
                  f"(32×32, writes the EXR), {m['startup']['runs']} runs, median; `render --version` (no scene) for "
                  "the fixed cost of loading the executable.")
-    L.append(f"7. Scaling: `render scenes/default.xml -D res=192 --spp {m['scaling']['spp']}` with `--threads 1` and "
-             f"`--threads 2`, interleaved, {m['scaling']['reps']} pairs, render_time_s, median ratio (on this VM single pairs "
+    sc = m.get("scaling", {"spp": "?", "reps": "?"})
+    L.append(f"7. Scaling: `render scenes/default.xml -D res=192 --spp {sc['spp']}` with `--threads 1` and "
+             f"`--threads 2`, interleaved, {sc['reps']} pairs, render_time_s, median ratio (on this VM single pairs "
              "vary by ±15 %, for the code before and after a change alike). Memory: max RSS (wait4 `ru_maxrss`) of `render` on "
              "`experiments/perf/scenes/mesh.xml -D mesh=bunny.ply|dragon.ply` and on one_sphere.xml (median of 3).\n")
     return "\n".join(L)
