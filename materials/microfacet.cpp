@@ -38,9 +38,14 @@ float MicrofacetDistribution::D(const vec3& m) const {
 }
 
 namespace {
+constexpr float kBeckmannNegligibleLambdaA2T2 = 0.08f;
 float lambdaExact(MicrofacetType type, float a2t2) {
     if (type == MicrofacetType::GGX) return 0.5f * (-1.0f + std::sqrt(1.0f + a2t2));  // [H14] eq. 86
     // Beckmann, [H14] eq. 72 with a = 1/(α tanθ): Λ = (erf(a) − 1)/2 + exp(−a²)/(2a√π).
+    // For a ≥ 3.53 (α² tan²θ ≤ 0.08) Λ ≤ 1.1e-8 < 2⁻²⁶: every use adds Λ to 1 in float
+    // (G1 = 1/(1 + Λ), 1/(1 + Λi + Λo)), where it vanishes, so 0 gives the same results without the
+    // erf and exp (tests/test_microfacet.cpp, BeckmannLambdaCutoffChangesNoG1).
+    if (a2t2 <= kBeckmannNegligibleLambdaA2T2) return 0.0f;
     const double a = 1.0 / std::sqrt(double(a2t2));
     return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * kSqrtPi));
 }

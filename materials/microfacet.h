@@ -61,7 +61,8 @@ public:
     float D(const vec3& m) const;
 
     /// Smith Λ(w) (exact for both distributions, [H14] eqs. 72 and 86 with the anisotropic
-    /// α(φ) = sqrt(cos²φ αx² + sin²φ αy²), [H14] eq. 80).
+    /// α(φ) = sqrt(cos²φ αx² + sin²φ αy²), [H14] eq. 80). Beckmann values below 2⁻²⁶ (α² tan²θ ≤ 0.08)
+    /// are returned as 0: they vanish wherever Λ is added to 1 in float, which is how it is used.
     float Lambda(const vec3& w) const;
 
     /// Exact Smith G1(w, m) = χ+((w·m)/(w·n)) / (1 + Λ(w)). Used by the visible-normal pdf.

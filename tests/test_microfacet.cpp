@@ -99,6 +99,48 @@ TEST(Microfacet, RationalBeckmannG1CloseToExact) {
     }
 }
 
+// Lambda returns 0 for Beckmann when α² tan²θ ≤ 0.08 instead of the exact Λ (≤ 1.1e-8): every
+// caller adds Λ to 1 in float, where the exact value vanishes too. Check that claim against the
+// exact formula (in double, as Lambda evaluated it) on a dense sweep up to the cutoff, and that G1
+// and the height-correlated G are unchanged on both sides of it.
+TEST(Microfacet, BeckmannLambdaCutoffChangesNoG1) {
+    auto exactLambda = [](double a2t2) {
+        const double a = 1.0 / std::sqrt(a2t2);
+        return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * 1.77245385090551602730));
+    };
+    int checked = 0;
+    for (float t = 0.08f; t > 1e-12f; t = std::nextafter(t * 0.9999f, 0.0f)) {
+        const float l = exactLambda(t);
+        ASSERT_LE(l, 1.2e-8f) << t;
+        ASSERT_EQ(1.0f + l, 1.0f) << t;
+        ASSERT_EQ(1.0f / (1.0f + l), 1.0f) << t;
+        ++checked;
+    }
+    EXPECT_GT(checked, 100000);
+    for (float alpha : {0.05f, 0.124f, 0.3f, 0.7f}) {
+        const MicrofacetDistribution d(MicrofacetType::Beckmann, alpha, alpha, true, ShadowingModel::SmithSeparable, false);
+        const MicrofacetDistribution hc(MicrofacetType::Beckmann, alpha, alpha, true,
+                                        ShadowingModel::SmithHeightCorrelated, false);
+        for (int i = 0; i <= 2000; ++i) {
+            const float c = std::max(1e-4f, i / 2000.0f);
+            const vec3 w = test::dirFromCos(c, 0.3f), wo = test::dirFromCos(0.7f, 2.0f);
+            const vec3 m(0.0f, 0.0f, 1.0f);
+            // α² tan²θ exactly as the library forms it from w ([H14] eq. 80).
+            auto a2t2Of = [&](const vec3& v) { return (sqr(v.x * alpha) + sqr(v.y * alpha)) / sqr(v.z); };
+            const float a2t2 = a2t2Of(w);
+            const float exact = a2t2 > 0 ? exactLambda(a2t2) : 0.0f;
+            EXPECT_EQ(d.G1(w, m), 1.0f / (1.0f + exact)) << alpha << " " << c;
+            const float lo = exactLambda(a2t2Of(wo));
+            EXPECT_EQ(hc.G(w, wo, m), 1.0f / (1.0f + exact + lo)) << alpha << " " << c;
+            if (a2t2 <= 0.08f) {
+                EXPECT_EQ(d.Lambda(w), 0.0f);
+            } else {
+                EXPECT_EQ(d.Lambda(w), exact);
+            }
+        }
+    }
+}
+
 TEST(Microfacet, ShadowingModelsBounded) {
     Pcg32 rng(3, 4);
     for (auto model : {ShadowingModel::SmithSeparable, ShadowingModel::SmithHeightCorrelated, ShadowingModel::VCavity}) {
