@@ -299,10 +299,22 @@ def t3_thesis_models(ctx):
             mlabel = "RGB" if mode == "rgb" else f"spectral N={mode}"
             lo_s = min(r["proposed"]["cpu_runs"]) / max(r["granier"]["cpu_runs"]) - 1
             hi_s = max(r["proposed"]["cpu_runs"]) / min(r["granier"]["cpu_runs"]) - 1
+            # Ratios of the interleaved pairs (run i of each material): their spread is the noise
+            # of this measurement on this machine.
+            pairs = sorted(p / g - 1 for p, g in zip(r["proposed"]["cpu_runs"], r["granier"]["cpu_runs"]))
+            out[key]["pair_ratios"] = pairs
+            islow = ip / ig - 1 if ip and ig else None
+            verdict = slow <= 0.05
+            by = f"{100 * (slow - 0.05):+.1f} points"
+            if islow is not None and (islow <= 0.05) != verdict and pairs[0] <= 0.05 <= pairs[-1]:
+                # CPU time and instruction count disagree, and the CPU pairs fall on both sides of the
+                # target: CPU time cannot decide at this noise level; the instruction count can.
+                verdict = ("met" if islow <= 0.05 else "**missed**") + " by instructions (CPU time undecided)"
+                by = f"instructions {100 * (islow - 0.05):+.1f} points"
             ctx.row("3", f"Thesis models, dragon, {integ} integrator, {mlabel}: proposed vs granier time per sample",
-                    f"{100 * slow:+.1f} % CPU time (range over runs {100 * lo_s:+.0f} to {100 * hi_s:+.0f} %; "
-                    f"render_time_s: {100 * sloww:+.1f} %{itxt})", "≤ +5 %", slow <= 0.05,
-                    f"{100 * (slow - 0.05):+.1f} points")
+                    f"{100 * slow:+.1f} % CPU time (range over runs {100 * lo_s:+.0f} to {100 * hi_s:+.0f} %, "
+                    f"interleaved pairs {100 * pairs[0]:+.0f} to {100 * pairs[-1]:+.0f} %; "
+                    f"render_time_s: {100 * sloww:+.1f} %{itxt})", "≤ +5 %", verdict, by)
             if slow > 0.05:
                 missed.append((integ, mode))
     ctx.m["thesis_models"] = {"scene": "experiments/perf/scenes/thesis_pair.xml", "res": res_px, "spp": [lo, hi],
@@ -502,6 +514,8 @@ def git(*args):
 
 
 def fmt_met(met):
+    if isinstance(met, str):  # a qualified verdict (target 3: decided by instructions)
+        return met
     return "—" if met is None else ("met" if met else "**missed**")
 
 
