@@ -772,13 +772,13 @@ def wins_text(ctx):
     for name in ["shading_overhead_default"]:
         if name in P:
             p = P[name]
-            wl = share(p, r"sampleVisible|__log1pf|__atanhf|__tanhf|__expm1f|__coshf")
+            wl = share(p, r"sampleVisible|d65Lanes")
             if wl > 3:
-                L.append(f"- **Wavelength sampling** (spectral/wavelengths.cpp, `SampledWavelengths::sampleVisible` and "
-                         f"the visible pdf: `tanh`, `atanh`, `cosh`), profile `{name}`: {wl:.1f} % together with the "
-                         "libm `log1pf`/`expm1f` it calls (the blackbody's `expm1` also lands in libm, so this is an "
-                         "upper bound). Once per camera path; a tabulated inverse CDF and pdf (a few hundred floats) "
-                         "would make it a table read.")
+                L.append(f"- **Wavelength sampling** (spectral/wavelengths.cpp, `SampledWavelengths::sampleVisible`: the "
+                         f"inverse CDF in lanes with a float series logarithm, and D65 at the sampled wavelengths, "
+                         f"`cie::d65Lanes`), profile `{name}`: {wl:.1f} %. Once per camera path; D65 is needed only by "
+                         "scenes with RGB illuminants or an environment map, and a tabulated inverse CDF (a few hundred "
+                         "floats) would make the sampling a table read.")
     per = ctx.m.get("startup", {}).get("direct_libraries", {})
     oiio = {k: v for k, v in per.items() if "OpenImageIO." in k or k.startswith("libOpenImageIO.so")}
     if "startup" in P and oiio:
