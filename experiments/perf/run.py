@@ -239,7 +239,7 @@ def instr_per_spp(ctx, scene, spp_lo, spp_hi, **kw):
 def t2_spectral_cost(ctx):
     scene = os.path.join(REPO, "scenes", "thinfilm_spheres.xml")
     res_px = "96" if ctx.quick else "128"
-    lo, hi, reps = (1, 5, 2) if ctx.quick else (4, 52, 5)
+    lo, hi, reps = (1, 5, 2) if ctx.quick else (4, 52, 9)
     out = {}
     modes = ["rgb", 4, 16, 32]
     timed = cpu_per_spp_interleaved(ctx, scene, lo, hi, reps, [{"mode": m, "defines": [f"res={res_px}"]} for m in modes])
@@ -257,9 +257,18 @@ def t2_spectral_cost(ctx):
         hi_r = max(out[str(n)]["cpu_runs"]) / min(out["rgb"]["cpu_runs"])
         ri = out[str(n)]["instructions_per_spp_64px"], out["rgb"]["instructions_per_spp_64px"]
         itxt = f"; instructions: {ri[0] / ri[1]:.2f}×" if ri[0] and ri[1] else ""
+        # Ratios of the interleaved runs (run i of each mode): their spread is this measurement's noise.
+        pairs = sorted(a / b for a, b in zip(out[str(n)]["cpu_runs"], out["rgb"]["cpu_runs"]))
+        verdict = r <= target
+        by = f"{r / target:.2f}× the target" if r > target else f"{100 * (1 - r / target):.0f} % below"
+        if ri[0] and ri[1] and (ri[0] / ri[1] <= target) != verdict and pairs[0] <= target <= pairs[-1]:
+            # As for target 3: CPU time cannot decide at this noise level, the instruction count can.
+            verdict = ("met" if ri[0] / ri[1] <= target else "**missed**") + " by instructions (CPU time undecided)"
+            by = f"instructions {100 * (1 - ri[0] / ri[1] / target):.0f} % below" if ri[0] / ri[1] <= target \
+                else f"instructions {ri[0] / ri[1] / target:.2f}× the target"
         ctx.row("2", f"Spectral cost, thin-film scene: time per sample N={n} ÷ RGB mode",
-                f"{r:.2f}× CPU time (range over runs {lo_r:.2f}–{hi_r:.2f}; render_time_s: {rw:.2f}×{itxt})", f"≤ {target:g}×", r <= target,
-                f"{r / target:.2f}× the target" if r > target else f"{100 * (1 - r / target):.0f} % below")
+                f"{r:.2f}× CPU time (range over runs {lo_r:.2f}–{hi_r:.2f}, interleaved pairs {pairs[0]:.2f}–{pairs[-1]:.2f}; "
+                f"render_time_s: {rw:.2f}×{itxt})", f"≤ {target:g}×", verdict, by)
         if r > target:
             missed.append(n)
     if missed:
@@ -274,7 +283,7 @@ def t2_spectral_cost(ctx):
 def t3_thesis_models(ctx):
     scene = os.path.join(SCENES, "thesis_pair.xml")
     res_px = "64" if ctx.quick else "128"
-    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 52, 5)
+    lo, hi, reps = (2, 10, 2) if ctx.quick else (4, 52, 7)
     # Warm-up: the proposed model acquires the rough tables (built once into IRIS_CACHE_DIR).
     ctx.render(scene, spp=1, mode="rgb", defines=["material=proposed", "res=16"])
     out = {}
