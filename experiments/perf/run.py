@@ -863,6 +863,21 @@ def main():
     for exe in ["render", "bench_render", "bench_perf_thinfilm", "bench_perf_tables"]:
         if not os.path.exists(ctx.exe(exe)):
             sys.exit(f"run.py: {ctx.exe(exe)} not found: build it (cmake -DIRIS_BUILD_BENCHMARKS=ON; ninja {exe})")
+    # Every binary must be built from the current sources: a report that names this commit but ran a
+    # benchmark built before the last change would be wrong without saying so.
+    newest, newest_src = 0.0, ""
+    for folder in ["core", "spectral", "materials", "integrators", "apps", os.path.join("experiments", "benchmarks"),
+                   os.path.join("experiments", "metrics")]:
+        for root, _dirs, files in os.walk(os.path.join(REPO, folder)):
+            for f in files:
+                if f.endswith((".cpp", ".h")):
+                    t = os.path.getmtime(os.path.join(root, f))
+                    if t > newest:
+                        newest, newest_src = t, os.path.join(root, f)
+    for exe in ["render", "bench_render", "bench_perf_thinfilm", "bench_perf_tables"]:
+        if os.path.getmtime(ctx.exe(exe)) < newest:
+            sys.exit(f"run.py: {ctx.exe(exe)} is older than {os.path.relpath(newest_src, REPO)}: rebuild "
+                     f"(ninja -C {args.build} render bench_render bench_perf_thinfilm bench_perf_tables) first")
     os.makedirs(ctx.out, exist_ok=True)
     shutil.rmtree(os.path.join(ctx.out, "profiles"), ignore_errors=True)
     started = datetime.datetime.utcnow().isoformat(timespec="seconds") + "Z"
