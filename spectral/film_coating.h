@@ -41,6 +41,10 @@ public:
     float at(float lambda) const;
 
 private:
+    /// A constant, or a triple of equal values (when not a spectrum): exactly values_[0] at every
+    /// wavelength, not a lerp of it (whose rounding made e.g. substrate_eta = 1.4 look dispersive).
+    bool constantValue() const { return !perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2]); }
+
     bool perChannel_ = false;
     vec3 values_{1.0f};
     vec3 lambdas_{645.0f, 525.0f, 445.0f};
@@ -169,7 +173,6 @@ private:
     const double* airyArray(AiryArray a) const { return airy_ + a * airyStride_; }
     /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
     void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
-    SquaredIndex extSq_;  // the exterior as the "substrate" of the reversed stack (fromBelow)
     const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;
 };

@@ -96,7 +96,7 @@ struct SquaredIndex {
 };
 SquaredIndex squaredIndex(complexd ior);
 AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film);
-/// The same from an already squared film index (FilmCoating reuses it across equal indices).
+/// The same from an already squared film index.
 AiryFilmConstants airyFilmConstants(double lambdaNm, double thicknessNm, const SquaredIndex& n1);
 
 /// Fast exact Airy sum (docs/thin_film.md §8): s and p from one q1, q2 and one sin/cos pair;
