@@ -20,7 +20,8 @@ float interpolate(const float* table, int count, float first, float step, float 
 // interpolate() for many wavelengths, in lane loops: the table position of every lane
 // (vectorised), the two table reads per lane and table (scalar loads: baseline x86-64 has no
 // gather), the blend (vectorised). Each lane does the operations of interpolate() in the same
-// order, so the results are identical; one position serves x̄, ȳ and z̄ (same 1 nm grid).
+// order, so the results are identical (d65Lanes; weightedXyzBarSum reads x̄, ȳ, z̄ of one
+// position together).
 constexpr int kBlock = 32;  // lanes per pass (kMaxWavelengths, spectral/sampled_spectrum.h)
 
 struct TablePositions {
@@ -114,17 +115,6 @@ void d65Lanes(const float* lambda, int count, float* out) {
         d65LanesAvx2(lambda, count, out);
     else
         d65LanesBaseline(lambda, count, out);
-}
-
-void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut) {
-    TablePositions p;
-    for (int j0 = 0; j0 < count; j0 += kBlock) {
-        const int m = std::min(kBlock, count - j0);
-        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, m, p);
-        blend(kXBar, m, p, xOut + j0);
-        blend(kYBar, m, p, yOut + j0);
-        blend(kZBar, m, p, zOut + j0);
-    }
 }
 
 namespace {

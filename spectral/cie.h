@@ -17,12 +17,10 @@ float zBar(float lambda);
 /// (which is how the CIE's own 1 nm table is defined).
 float d65(float lambda);
 
-/// The same lookups for `count` wavelengths at once (count a multiple of 4, e.g.
-/// SampledSpectrum::paddedSize(n)): out[j] = d65(lambda[j]), and x̄, ȳ, z̄ of xyzBar(lambda[j]),
-/// bit-identical to the one-wavelength functions (tests/test_cie.cpp), written as loops over lanes
-/// that the compiler vectorises (the table reads stay scalar loads).
+/// d65 for `count` wavelengths at once (count a multiple of 4, e.g. SampledSpectrum::paddedSize(n)):
+/// out[j] = d65(lambda[j]), bit-identical to the one-wavelength lookup (tests/test_spectral_lanes.cpp),
+/// written as loops over lanes that the compiler vectorises (the table reads stay scalar loads).
 void d65Lanes(const float* lambda, int count, float* out);
-void xyzBarLanes(const float* lambda, int count, float* xOut, float* yOut, float* zOut);
 
 /// Σ_{j<n} weight[j] · xyzBar(lambda[j]), summed in the order j = 0, 1, … per component: the
 /// value of that plain loop, bit for bit (tests/test_spectral_lanes.cpp). lambda and weight must

@@ -9,7 +9,9 @@
 #include <sstream>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace iris::testing {
 
@@ -42,6 +44,11 @@ inline RunResult runCommand(const std::string& cmd) {
     r.stderrText = ss.str();
     std::remove(errFile.c_str());
     return r;
+}
+
+/// A temporary file path private to this test process: <gtest TempDir>/<prefix>_<pid>_<name>.
+inline std::string tempPath(const std::string& prefix, const std::string& name) {
+    return (std::filesystem::path(::testing::TempDir()) / (prefix + "_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
 inline void writeTextFile(const std::string& path, const std::string& text) {

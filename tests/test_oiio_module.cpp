@@ -21,9 +21,7 @@ using namespace iris::testing;
 
 namespace {
 
-std::string tempPath(const std::string& name) {
-    return (std::filesystem::path(::testing::TempDir()) / ("iris_oiio_" + std::to_string(::getpid()) + "_" + name)).string();
-}
+std::string tempPath(const std::string& name) { return iris::testing::tempPath("iris_oiio", name); }
 
 /// A small scene lit by a constant emitter whose sphere has a bitmap texture from `texture`.
 std::string texturedScene(const std::string& texture) {

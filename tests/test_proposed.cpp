@@ -30,6 +30,41 @@ std::vector<std::pair<vec3, vec3>> randomPairs(int n, uint64_t seed) {
     return v;
 }
 
+/// The direction pairs of the rough-coat helper tests, for both distributions and several α: wo
+/// uniform on the sphere (pairs with wo.z <= 0 skipped), wi uniform or (every other one) reflected
+/// about a sampled normal, and with `opposite` every 97th wi = −wo (no half vector).
+template <typename Fn>
+void forEachCoatPair(uint64_t seed, uint64_t stream, bool opposite, Fn&& fn) {
+    Pcg32 rng(seed, stream);
+    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX})
+        for (float alpha : {1e-4f, 0.08f, 0.124f, 0.5f, 1.0f}) {
+            const MicrofacetDistribution dist(type, alpha, alpha);
+            for (int i = 0; i < 2000; ++i) {
+                const vec3 wo = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
+                vec3 wi = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
+                if (i % 2 && wo.z > 0) wi = reflect(wo, dist.sampleNormal(wo, vec2(rng.uniform(), rng.uniform())));
+                if (opposite && i % 97 == 0) wi = -wo;
+                if (!(wo.z > 0)) continue;
+                fn(dist, alpha, wo, wi);
+            }
+        }
+}
+
+/// sample() of a BSDF on its fast path (caches, constant weights) against the general one's with
+/// the same random numbers: the same outcome bit for bit.
+void expectSameSample(const BSDF& cached, const BSDF& fresh, const vec3& wo, Pcg32& rng) {
+    const float uc = rng.uniform();
+    const vec2 u(rng.uniform(), rng.uniform());
+    const auto sa = cached.sample(wo, uc, u, TransportMode::Radiance);
+    const auto sb = fresh.sample(wo, uc, u, TransportMode::Radiance);
+    ASSERT_EQ(bool(sa), bool(sb));
+    if (sa) {
+        ASSERT_EQ(sa->wi, sb->wi);
+        ASSERT_EQ(sa->pdf, sb->pdf);
+        for (int c = 0; c < sa->f.size(); ++c) ASSERT_EQ(sa->f[c], sb->f[c]);
+    }
+}
+
 }  // namespace
 
 TEST(Proposed, EqualsRoughPlasticWithoutPhaseAndEqualEta) {
@@ -276,24 +311,15 @@ TEST(Proposed, CachedSmithFactorHelpersEqualTheGeneralOnes) {
     // The wo cache of the proposed BSDF uses roughCoatGeometry / roughCoatSpecularPdf with
     // g1o = 1/(1 + Λ(wo)) precomputed; they must equal the versions that call
     // MicrofacetDistribution::G and ::pdf bit for bit (same float operations).
-    Pcg32 rng(23, 4);
     int nonzero = 0;
-    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX})
-        for (float alpha : {1e-4f, 0.08f, 0.124f, 0.5f, 1.0f}) {
-            const MicrofacetDistribution dist(type, alpha, alpha);
-            for (int i = 0; i < 2000; ++i) {
-                const vec3 wo = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
-                vec3 wi = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
-                if (i % 2 && wo.z > 0) wi = reflect(wo, dist.sampleNormal(wo, vec2(rng.uniform(), rng.uniform())));
-                if (!(wo.z > 0)) continue;
-                const float g1o = 1.0f / (1.0f + dist.Lambda(wo));
-                const RoughCoatGeometry a = roughCoatGeometry(dist, wo, wi), b = roughCoatGeometry(dist, wo, wi, g1o);
-                ASSERT_EQ(a.dg, b.dg) << alpha;
-                ASSERT_EQ(a.h, b.h);
-                ASSERT_EQ(roughCoatSpecularPdf(dist, wo, wi), roughCoatSpecularPdf(dist, wo, wi, g1o)) << alpha;
-                nonzero += a.dg > 0;
-            }
-        }
+    forEachCoatPair(23, 4, false, [&](const MicrofacetDistribution& dist, float alpha, const vec3& wo, const vec3& wi) {
+        const float g1o = 1.0f / (1.0f + dist.Lambda(wo));
+        const RoughCoatGeometry a = roughCoatGeometry(dist, wo, wi), b = roughCoatGeometry(dist, wo, wi, g1o);
+        ASSERT_EQ(a.dg, b.dg) << alpha;
+        ASSERT_EQ(a.h, b.h);
+        ASSERT_EQ(roughCoatSpecularPdf(dist, wo, wi), roughCoatSpecularPdf(dist, wo, wi, g1o)) << alpha;
+        nonzero += a.dg > 0;
+    });
     EXPECT_GT(nonzero, 5000);
 }
 
@@ -323,16 +349,7 @@ TEST(Proposed, WoCacheGivesTheSameValuesAsFreshBSDFs) {
                     const SampledSpectrum b = fresh->eval(w, wi, TransportMode::Radiance);
                     for (int c = 0; c < a.size(); ++c) ASSERT_EQ(a[c], b[c]);
                     ASSERT_EQ(shared.bsdf->pdf(w, wi, TransportMode::Radiance), fresh->pdf(w, wi, TransportMode::Radiance));
-                    const float uc = rng.uniform();
-                    const vec2 u(rng.uniform(), rng.uniform());
-                    const auto sa = shared.bsdf->sample(w, uc, u, TransportMode::Radiance);
-                    const auto sb = fresh->sample(w, uc, u, TransportMode::Radiance);
-                    ASSERT_EQ(bool(sa), bool(sb));
-                    if (sa) {
-                        ASSERT_EQ(sa->wi, sb->wi);
-                        ASSERT_EQ(sa->pdf, sb->pdf);
-                        for (int c = 0; c < a.size(); ++c) ASSERT_EQ(sa->f[c], sb->f[c]);
-                    }
+                    ASSERT_NO_FATAL_FAILURE(expectSameSample(*shared.bsdf, *fresh, w, rng));
                 }
                 arena.reset();
             }
@@ -344,26 +361,16 @@ TEST(Proposed, CachedHalfVectorHelpersEqualTheGeneralOnes) {
     // The (wo, wi) cache of the proposed BSDF keeps h and D(h) (roughCoatHalf) for eval and pdf of
     // the same pair; roughCoatGeometry / roughCoatSpecularPdf with it must equal the versions that
     // compute h and D themselves bit for bit.
-    Pcg32 rng(41, 6);
     int nonzero = 0;
-    for (auto type : {MicrofacetType::Beckmann, MicrofacetType::GGX})
-        for (float alpha : {1e-4f, 0.08f, 0.124f, 0.5f, 1.0f}) {
-            const MicrofacetDistribution dist(type, alpha, alpha);
-            for (int i = 0; i < 2000; ++i) {
-                const vec3 wo = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
-                vec3 wi = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
-                if (i % 2 && wo.z > 0) wi = reflect(wo, dist.sampleNormal(wo, vec2(rng.uniform(), rng.uniform())));
-                if (i % 97 == 0) wi = -wo;  // wo + wi = 0: no half vector
-                if (!(wo.z > 0)) continue;
-                const float g1o = 1.0f / (1.0f + dist.Lambda(wo));
-                const RoughCoatHalf hd = roughCoatHalf(dist, wo, wi);
-                const RoughCoatGeometry a = roughCoatGeometry(dist, wo, wi, g1o), b = roughCoatGeometry(dist, wo, wi, g1o, hd);
-                ASSERT_EQ(a.dg, b.dg) << alpha;
-                ASSERT_EQ(a.h, b.h);
-                ASSERT_EQ(roughCoatSpecularPdf(dist, wo, wi, g1o), roughCoatSpecularPdf(wo, g1o, hd)) << alpha;
-                nonzero += a.dg > 0;
-            }
-        }
+    forEachCoatPair(41, 6, true, [&](const MicrofacetDistribution& dist, float alpha, const vec3& wo, const vec3& wi) {
+        const float g1o = 1.0f / (1.0f + dist.Lambda(wo));
+        const RoughCoatHalf hd = roughCoatHalf(dist, wo, wi);
+        const RoughCoatGeometry a = roughCoatGeometry(dist, wo, wi, g1o), b = roughCoatGeometry(dist, wo, wi, g1o, hd);
+        ASSERT_EQ(a.dg, b.dg) << alpha;
+        ASSERT_EQ(a.h, b.h);
+        ASSERT_EQ(roughCoatSpecularPdf(dist, wo, wi, g1o), roughCoatSpecularPdf(wo, g1o, hd)) << alpha;
+        nonzero += a.dg > 0;
+    });
     EXPECT_GT(nonzero, 5000);
 }
 
@@ -405,16 +412,7 @@ TEST(Proposed, PairCacheGivesTheSameValuesAsFreshBSDFs) {
                     nonzero += fa[c] > 0;
                 }
                 ASSERT_EQ(shared.bsdf->pdf(a, b, TransportMode::Radiance), fresh()->pdf(a, b, TransportMode::Radiance));
-                const float uc = rng.uniform();
-                const vec2 u(rng.uniform(), rng.uniform());
-                const auto sa = shared.bsdf->sample(a, uc, u, TransportMode::Radiance);
-                const auto sb = fresh()->sample(a, uc, u, TransportMode::Radiance);
-                ASSERT_EQ(bool(sa), bool(sb));
-                if (sa) {
-                    ASSERT_EQ(sa->wi, sb->wi);
-                    ASSERT_EQ(sa->pdf, sb->pdf);
-                    for (int c = 0; c < fa.size(); ++c) ASSERT_EQ(sa->f[c], sb->f[c]);
-                }
+                ASSERT_NO_FATAL_FAILURE(expectSameSample(*shared.bsdf, *fresh(), a, rng));
             }
             arena.reset();
         }
@@ -454,16 +452,7 @@ TEST(Proposed, ConstantWeightsEqualTexturedWeights) {
                 nonzero += a[c] > 0;
             }
             ASSERT_EQ(fast.bsdf->pdf(wo, wi, TransportMode::Radiance), general.bsdf->pdf(wo, wi, TransportMode::Radiance));
-            const float uc = rng.uniform();
-            const vec2 u(rng.uniform(), rng.uniform());
-            const auto sa = fast.bsdf->sample(wo, uc, u, TransportMode::Radiance);
-            const auto sb = general.bsdf->sample(wo, uc, u, TransportMode::Radiance);
-            ASSERT_EQ(bool(sa), bool(sb));
-            if (sa) {
-                ASSERT_EQ(sa->wi, sb->wi);
-                ASSERT_EQ(sa->pdf, sb->pdf);
-                for (int c = 0; c < a.size(); ++c) ASSERT_EQ(sa->f[c], sb->f[c]);
-            }
+            ASSERT_NO_FATAL_FAILURE(expectSameSample(*fast.bsdf, *general.bsdf, wo, rng));
         }
         EXPECT_GT(nonzero, 300);
     }

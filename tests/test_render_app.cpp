@@ -35,9 +35,7 @@ const char* kSmallScene = R"(<scene version="3.0.0">
 </scene>
 )";
 
-std::string tempPath(const std::string& name) {
-    return (std::filesystem::path(::testing::TempDir()) / ("iris_app_" + std::to_string(::getpid()) + "_" + name)).string();
-}
+std::string tempPath(const std::string& name) { return iris::testing::tempPath("iris_app", name); }
 
 }  // namespace
 

@@ -24,13 +24,27 @@ struct OpenImage {
     std::unique_ptr<OIIO::ImageInput> in;
 };
 
+/// fn() across the C boundary: an exception becomes "<what>: <message>" in err and `failed` is
+/// returned.
+template <typename R, typename Fn>
+R guarded(char* err, size_t errlen, const char* what, R failed, Fn&& fn) {
+    try {
+        return fn();
+    } catch (const std::exception& e) {
+        setError(err, errlen, std::string(what) + ": " + e.what());
+    } catch (...) {
+        setError(err, errlen, std::string(what) + ": unknown error");
+    }
+    return failed;
+}
+
 }  // namespace
 
 IRIS_OIIO_EXPORT int iris_oiio_abi_version(void) { return IRIS_OIIO_ABI_VERSION; }
 
 IRIS_OIIO_EXPORT int iris_oiio_write_u8(const char* format_path, const char* out_path, int width, int height,
                                         int channels, const unsigned char* pixels, char* err, size_t errlen) {
-    try {
+    return guarded(err, errlen, "cannot write image", 0, [&] {
         // The plug-in is chosen from the real path's extension; the data then goes to out_path.
         auto out = OIIO::ImageOutput::create(format_path);
         if (!out) {
@@ -50,16 +64,11 @@ IRIS_OIIO_EXPORT int iris_oiio_write_u8(const char* format_path, const char* out
             return 0;
         }
         return 1;
-    } catch (const std::exception& e) {
-        setError(err, errlen, std::string("cannot write image: ") + e.what());
-    } catch (...) {
-        setError(err, errlen, "cannot write image: unknown error");
-    }
-    return 0;
+    });
 }
 
 IRIS_OIIO_EXPORT void* iris_oiio_open(const char* path, iris_oiio_info* info, char* err, size_t errlen) {
-    try {
+    return guarded(err, errlen, "cannot read image", static_cast<void*>(nullptr), [&]() -> void* {
         auto image = std::make_unique<OpenImage>();
         image->in = OIIO::ImageInput::open(path);
         if (!image->in) {
@@ -79,12 +88,7 @@ IRIS_OIIO_EXPORT void* iris_oiio_open(const char* path, iris_oiio_info* info, ch
         const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
         std::snprintf(info->color_space, sizeof(info->color_space), "%s", cs.c_str());
         return image.release();
-    } catch (const std::exception& e) {
-        setError(err, errlen, std::string("cannot read image: ") + e.what());
-    } catch (...) {
-        setError(err, errlen, "cannot read image: unknown error");
-    }
-    return nullptr;
+    });
 }
 
 IRIS_OIIO_EXPORT const char* iris_oiio_channel_name(void* handle, int c) {
@@ -93,7 +97,7 @@ IRIS_OIIO_EXPORT const char* iris_oiio_channel_name(void* handle, int c) {
 }
 
 IRIS_OIIO_EXPORT int iris_oiio_read_float(void* handle, float* out, char* err, size_t errlen) {
-    try {
+    return guarded(err, errlen, "cannot read pixels", 0, [&] {
         OIIO::ImageInput& in = *static_cast<OpenImage*>(handle)->in;
         const OIIO::ImageSpec& spec = in.spec();
         const bool ok = in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out);
@@ -104,12 +108,7 @@ IRIS_OIIO_EXPORT int iris_oiio_read_float(void* handle, float* out, char* err, s
             return 0;
         }
         return 1;
-    } catch (const std::exception& e) {
-        setError(err, errlen, std::string("cannot read pixels: ") + e.what());
-    } catch (...) {
-        setError(err, errlen, "cannot read pixels: unknown error");
-    }
-    return 0;
+    });
 }
 
 IRIS_OIIO_EXPORT void iris_oiio_close(void* handle) {
