@@ -187,7 +187,7 @@ RoughTransmittanceTables::Line RoughTransmittanceTables::line(float eta, float a
 }
 
 float RoughTransmittanceTables::transmittance(const Line& l, float cosTheta) const {
-    const RoughStencil sm = roughCatmullRom(std::clamp(cosTheta, 0.0f, 1.0f) * float(res.nMu - 1), res.nMu);
+    const RoughStencil sm = roughMuStencil(cosTheta, res.nMu);
     float v = 0;  // eq. 2.44
     for (int i = 0; i < l.count; ++i) {
         const float* row = &ext[size_t(l.offset[i])];

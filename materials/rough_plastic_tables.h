@@ -182,15 +182,14 @@ public:
             const float* r1 = &ext_[size_t(se.idx[1]) * size_t(nMu_) + m0];
             const float* r2 = &ext_[size_t(se.idx[2]) * size_t(nMu_) + m0];
             const float* r3 = &ext_[size_t(se.idx[3]) * size_t(nMu_) + m0];
-            // Lane k = node m0 + k (GCC/Clang vector extension: element-wise IEEE operations,
-            // the same roundings as the scalar lineNode).
-            typedef float V4 __attribute__((vector_size(16)));
+            // Lane k = node m0 + k (element-wise IEEE operations, the same roundings as the
+            // scalar lineNode).
             const float* rows[4] = {r0, r1, r2, r3};
-            V4 node = {0.0f, 0.0f, 0.0f, 0.0f};
+            RoughV4 node = {0.0f, 0.0f, 0.0f, 0.0f};
             for (int i = 0; i < 4; ++i) {
-                V4 r;
+                RoughV4 r;
                 std::memcpy(&r, rows[i], sizeof(r));
-                const V4 w = {se.w[i], se.w[i], se.w[i], se.w[i]};
+                const RoughV4 w = {se.w[i], se.w[i], se.w[i], se.w[i]};
                 node = node + w * r;
             }
             for (int k = 0; k < 4; ++k) v += mu.w[k] * node[k];
