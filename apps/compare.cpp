@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/image.h"
+#include "core/io/image.h"
 #include "experiments/metrics/image_metrics.h"
 
 using namespace iris;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/image.h"
+#include "core/io/image.h"
 #include "experiments/metrics/merge_renders.h"
 
 using namespace iris;

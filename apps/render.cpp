@@ -11,11 +11,12 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/film.h"
-#include "core/image.h"
-#include "core/loader/scene_loader.h"
-#include "core/renderer.h"
-#include "core/scene.h"
+#include "render/film.h"
+#include "core/io/image.h"
+#include "core/source_tree.h"
+#include "render/loader/scene_loader.h"
+#include "render/renderer.h"
+#include "render/scene.h"
 #include "spectral/color_management.h"
 
 #include <unistd.h>
@@ -169,7 +170,7 @@ int main(int argc, char** argv) {
         else if (scenePath.empty()) scenePath = a;
         else usageError("more than one scene file given ('" + scenePath + "' and '" + a + "')");
     }
-    if (scenePath.empty()) scenePath = std::string(IRIS_SOURCE_DIR) + "/scenes/default.xml";
+    if (scenePath.empty()) scenePath = sourcePath("scenes/default.xml");
     if ((resume || opt.checkpointEvery > 0) && checkpoint.empty()) usageError("--resume and --checkpoint-every need --checkpoint FILE");
     opt.checkpointPath = checkpoint;
     opt.resume = resume;

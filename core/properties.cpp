@@ -1,7 +1,5 @@
 #include "core/properties.h"
 
-#include "core/registry.h"
-#include "spectral/spectrum_factory.h"
 
 namespace iris {
 
@@ -128,72 +126,6 @@ mat4 Properties::getTransform(const std::string& name, const mat4& def) const {
     if (!e) return def;
     if (const mat4* m = std::get_if<mat4>(&e->value)) return *m;
     typeError(name, "transform");
-}
-
-SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc) {
-    try {
-        switch (v.type) {
-            case SpectrumValue::Type::Constant:
-                return std::make_shared<ConstantSpectrum>(v.constant, kind);
-            case SpectrumValue::Type::Pairs:
-                return makePiecewiseLinearSpectrum(v.lambdas, v.values, kind);
-            case SpectrumValue::Type::File:
-                return loadSpdFile(v.path, kind);
-            case SpectrumValue::Type::Blackbody:
-                return makeBlackbodySpectrum(v.temperature, v.scale);
-        }
-    } catch (const Error& e) {
-        // File errors already name their file; add where the scene asked for it.
-        failAt(loc, e.what());
-    }
-    failAt(loc, "invalid spectrum value");
-}
-
-namespace {
-/// A plain number as a spectrum. Emitters multiply it by D65 with Y = 1 (as Mitsuba 3 does), so a
-/// float emitter renders the same white, (v, v, v), in spectral and RGB mode.
-SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind) {
-    if (kind == SpectrumKind::Illuminant) return makeRGBSpectrum(vec3(v), kind);
-    return std::make_shared<ConstantSpectrum>(v, kind);
-}
-}  // namespace
-
-SpectrumPtr Properties::getSpectrum(const std::string& name, SpectrumKind kind) const {
-    const Entry& e = require(name);
-    if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
-    if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
-    if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
-    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) return spectrumFromValue(*s, kind, e.loc);
-    typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
-}
-SpectrumPtr Properties::getSpectrum(const std::string& name, SpectrumKind kind, float def) const {
-    return present(name) ? getSpectrum(name, kind) : spectrumFromNumber(def, kind);
-}
-
-SpectrumTexturePtr Properties::getSpectrumTexture(const std::string& name, SpectrumKind kind) const {
-    const Entry& e = require(name);
-    if (const PropertiesPtr* p = std::get_if<PropertiesPtr>(&e.value)) {
-        const Properties& tp = **p;
-        if (tp.tag() != "texture") failAt(e.loc, "parameter '", name, "' must be a texture or spectrum, not a ", tp.tag());
-        return SpectrumTextureRegistry::instance().create(tp, kind);
-    }
-    return constantTexture(getSpectrum(name, kind));
-}
-SpectrumTexturePtr Properties::getSpectrumTexture(const std::string& name, SpectrumKind kind, float def) const {
-    return present(name) ? getSpectrumTexture(name, kind) : constantTexture(spectrumFromNumber(def, kind));
-}
-
-FloatTexturePtr Properties::getFloatTexture(const std::string& name) const {
-    const Entry& e = require(name);
-    if (const PropertiesPtr* p = std::get_if<PropertiesPtr>(&e.value)) {
-        const Properties& tp = **p;
-        if (tp.tag() != "texture") failAt(e.loc, "parameter '", name, "' must be a texture or float, not a ", tp.tag());
-        return FloatTextureRegistry::instance().create(tp);
-    }
-    return constantTexture(getFloat(name));
-}
-FloatTexturePtr Properties::getFloatTexture(const std::string& name, float def) const {
-    return present(name) ? getFloatTexture(name) : constantTexture(def);
 }
 
 PropertiesPtr Properties::getObject(const std::string& name, bool required) const {

@@ -12,8 +12,6 @@
 
 #include "core/error.h"
 #include "core/math.h"
-#include "core/texture.h"
-#include "spectral/spectrum.h"
 
 namespace iris {
 
@@ -84,15 +82,9 @@ public:
     vec3 getRGB(const std::string& name, const vec3& def) const;
     mat4 getTransform(const std::string& name, const mat4& def = mat4(1.0f)) const;
 
-    /// Spectrum from a float, rgb, spectrum or blackbody value.
-    SpectrumPtr getSpectrum(const std::string& name, SpectrumKind kind) const;
-    SpectrumPtr getSpectrum(const std::string& name, SpectrumKind kind, float def) const;
-    /// Spectrum texture: any spectrum value, or a nested <texture>.
-    SpectrumTexturePtr getSpectrumTexture(const std::string& name, SpectrumKind kind) const;
-    SpectrumTexturePtr getSpectrumTexture(const std::string& name, SpectrumKind kind, float def) const;
-    /// Float texture: a float, or a nested <texture>.
-    FloatTexturePtr getFloatTexture(const std::string& name) const;
-    FloatTexturePtr getFloatTexture(const std::string& name, float def) const;
+    // Spectra and textures are read by free functions of their own layers:
+    // getSpectrum (spectral/spectrum_params.h), getSpectrumTexture and getFloatTexture
+    // (materials/textures/texture_params.h), through the raw access below.
     /// A nested object given by name (or nullptr when absent and not required).
     PropertiesPtr getObject(const std::string& name, bool required = true) const;
 
@@ -103,15 +95,21 @@ public:
     /// Cache for the object built from these properties (shared by every <ref> to the same id).
     mutable std::shared_ptr<void> instance;
 
-private:
+    /// Raw access for the typed getters of higher layers. A stored value and where it was written.
     struct Entry {
         PropertyValue value;
         SourceLocation loc;
     };
+    /// The entry of `name` (marked as used), or nullptr when absent.
     const Entry* find(const std::string& name) const;
+    /// True when `name` is present (recorded as a known parameter, not marked as used).
     bool present(const std::string& name) const;
+    /// The entry of `name`, or "file:line: missing required parameter" when absent.
     const Entry& require(const std::string& name) const;
+    /// "parameter 'x' of <tag> 'type' must be a <expected>, not a <stored type>".
     [[noreturn]] void typeError(const std::string& name, const char* expected) const;
+
+private:
 
     std::string tag_, type_, id_;
     SourceLocation loc_;
@@ -119,8 +117,5 @@ private:
     std::vector<PropertiesPtr> children_;
     mutable std::set<std::string> queried_, asked_;
 };
-
-/// Build a spectrum of the given kind from a scene value (used by Properties and the loader).
-SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
 
 }  // namespace iris

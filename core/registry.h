@@ -14,9 +14,6 @@
 
 namespace iris {
 
-class Material;
-class Light;
-
 template <typename T, typename... Extra>
 class Registry {
 public:
@@ -50,10 +47,8 @@ private:
     std::map<std::string, Factory> factories_;
 };
 
-using MaterialRegistry = Registry<Material>;
-using SpectrumTextureRegistry = Registry<SpectrumTexture, SpectrumKind>;
-using FloatTextureRegistry = Registry<FloatTexture>;
-using LightRegistry = Registry<Light>;
+// Each object kind declares its registry beside its interface, in its own layer (for example
+// MaterialRegistry in materials/material.h): this header names no type above core/.
 
 /// Static registration helper: `static Registrar<MaterialRegistry> reg("diffuse", &create);`
 template <typename R>

@@ -4,7 +4,7 @@
 // −1 = unlimited). The `direct` integrator is this with max_depth = 2 and no Russian roulette.
 #pragma once
 
-#include "integrators/integrator.h"
+#include "render/integrator.h"
 
 namespace iris {
 

@@ -7,6 +7,7 @@
 // step δ of the central differences ∂h/∂u ≈ (h(u+δ) − h(u−δ))/(2δ), default 1e-3 — about one
 // texel of a 1k map; Mitsuba differentiates the bilinear interpolant instead), one nested <bsdf>.
 #include "materials/perturbed_frame.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -56,7 +57,7 @@ std::shared_ptr<Material> createBumpMap(const Properties& p) {
         if (own.count(name)) continue;
         const PropertiesPtr obj = nestedObjectOrFail(p, name, "bumpmap", own);
         if (obj->tag() == "texture") {
-            textures.push_back(p.getFloatTexture(name));
+            textures.push_back(getFloatTexture(p, name));
             own.insert(name);
         }
     }

@@ -21,6 +21,7 @@
 #include "materials/cloth_distributions.h"
 #include "materials/cloth_sampling.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -80,11 +81,11 @@ private:
 };
 
 std::shared_ptr<Material> createCloth(const Properties& p) {
-    auto base = p.getSpectrumTexture("base_color", SpectrumKind::Reflectance, 0.5f);
-    auto sheen = p.getSpectrumTexture("sheen_color", SpectrumKind::Reflectance, 0.5f);
+    auto base = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
+    auto sheen = getSpectrumTexture(p, "sheen_color", SpectrumKind::Reflectance, 0.5f);
     SpectrumTexturePtr subsurface;
-    if (p.has("subsurface_color")) subsurface = p.getSpectrumTexture("subsurface_color", SpectrumKind::Reflectance);
-    auto roughness = p.getFloatTexture("roughness", 0.5f);
+    if (p.has("subsurface_color")) subsurface = getSpectrumTexture(p, "subsurface_color", SpectrumKind::Reflectance);
+    auto roughness = getFloatTexture(p, "roughness", 0.5f);
     if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(roughness.get()); c && !(c->value() > 0 && c->value() <= 1))
         failAt(p.locationOf("roughness"), "cloth: roughness must be in (0, 1], got ", c->value());
     const float wrap = p.getFloat("wrap", 0.0f);

@@ -19,7 +19,7 @@
 namespace iris::cloth {
 
 /// Charlie sheen distribution [EK17, §2]: D(θh) = (2 + 1/α) sin(θh)^(1/α) / (2π).
-/// Normalised so that ∫ D cosθh dω = 1 over the hemisphere (checked in tests/test_cloth.cpp).
+/// Normalised so that ∫ D cosθh dω = 1 over the hemisphere (checked in tests/materials/test_cloth.cpp).
 inline float charlieD(float alpha, float cosThetaH) {
     const float invAlpha = 1.0f / alpha;
     const float sin2 = std::max(0.0f, 1.0f - cosThetaH * cosThetaH);

@@ -6,9 +6,10 @@
 //   ext_ior               outside medium (float or preset name, default 1; iris extension)
 // RGB mode: η and κ spectra are evaluated at the channel wavelengths (spectral/spectrum.h).
 #include "core/registry.h"
-#include "materials/conductor_presets.h"
+#include "spectral/conductor_presets.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -58,7 +59,7 @@ std::shared_ptr<Material> createConductor(const Properties& p) {
     ConductorSpectra c = readConductor(p);
     if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "conductor: ext_ior must be > 0, got ", c.extIOR);
     return std::make_shared<ConductorMaterial>(
-        std::move(c), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f));
+        std::move(c), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -85,11 +86,11 @@ private:
 std::shared_ptr<Material> createCookTorrance(const Properties& p) {
     const float kd = p.getFloat("kd", 0.5f);
     if (!(kd >= 0 && kd <= 1)) failAt(p.locationOf("kd"), "cook_torrance: kd must be in [0, 1], got ", kd);
-    FloatTexturePtr roughness = p.getFloatTexture("roughness", 0.3f);
+    FloatTexturePtr roughness = getFloatTexture(p, "roughness", 0.3f);
     if (roughness->isConstant() && !(roughness->eval({}) >= 0))
         failAt(p.locationOf("roughness"), "cook_torrance: roughness must be >= 0, got ", roughness->eval({}));
-    return std::make_shared<CookTorranceMaterial>(p.getSpectrumTexture("albedo", SpectrumKind::Reflectance, 0.5f),
-                                                  p.getSpectrumTexture("f0", SpectrumKind::Reflectance, 0.04f),
+    return std::make_shared<CookTorranceMaterial>(getSpectrumTexture(p, "albedo", SpectrumKind::Reflectance, 0.5f),
+                                                  getSpectrumTexture(p, "f0", SpectrumKind::Reflectance, 0.04f),
                                                   std::move(roughness), kd,
                                                   p.getBool("sample_visible", true));
 }

@@ -1,15 +1,16 @@
 // Smooth dielectric interface: Fresnel-weighted choice between mirror reflection and refraction
 // (pbrt-v4 §9.5; Mitsuba 3 plugin "dielectric"). Works from both sides (wo.z < 0 = inside).
 //   int_ior  (default "bk7"), ext_ior (default "air"): float, IOR preset name, rgb (per-channel
-//            η_R, η_G, η_B), spectrum, or Cauchy/Sellmeier coefficients (materials/dispersion.h)
+//            η_R, η_G, η_B), spectrum, or Cauchy/Sellmeier coefficients (spectral/dispersion.h)
 //   specular_reflectance, specular_transmittance  scale factors (default 1)
 // Transmission in Radiance mode is scaled by (η_i/η_t)² (non-symmetric BTDF, Veach 1997 §5.2).
 // Directions use one η: the hero wavelength's in spectral mode (secondaries are terminated when η
 // varies with λ), the green channel's in RGB mode; Fresnel factors use each channel's own η.
 #include "core/registry.h"
-#include "materials/dispersion.h"
+#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -72,8 +73,8 @@ std::shared_ptr<Material> createDielectric(const Properties& p) {
             failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "dielectric: int_ior and ext_ior must be > 0, got ",
                    in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<DielectricMaterial>(
-        std::move(in), std::move(ext), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
-        p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
+        std::move(in), std::move(ext), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),
+        getSpectrumTexture(p, "specular_transmittance", SpectrumKind::Reflectance, 1.0f));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "core/registry.h"
 #include "core/sampling.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -47,7 +48,7 @@ private:
 };
 
 std::shared_ptr<Material> createDiffuse(const Properties& p) {
-    return std::make_shared<DiffuseMaterial>(p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f));
+    return std::make_shared<DiffuseMaterial>(getSpectrumTexture(p, "reflectance", SpectrumKind::Reflectance, 0.5f));
 }
 
 }  // namespace

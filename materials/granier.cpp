@@ -20,6 +20,7 @@
 #include "core/sampling.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 #include "materials/thesis_channels.h"
 
 namespace iris {
@@ -164,14 +165,14 @@ public:
             if (!(lambdas_[c] > 0)) failAt(p.locationOf("wavelengths"), "granier: wavelengths must be positive (nm)");
         etaT_ = ChannelIOR::fromProperties(p, "eta_t", vec3(1.5f, 1.6f, 1.8f), lambdas_);
         if (!(etaI_ > 0) || !(etaT_.minValue() > 0)) failAt(p.location(), "granier: indices of refraction must be positive");
-        thickness_ = p.getFloatTexture("thickness", 76.0f);
+        thickness_ = getFloatTexture(p, "thickness", 76.0f);
         if (thickness_->isConstant() && !(thickness_->eval({}) >= 0))
             failAt(p.locationOf("thickness"), "granier: thickness must be >= 0 nm, got ", thickness_->eval({}));
         e0_ = p.getFloat("e0", 130.0f);
         e1_ = p.getFloat("e1", 130.0f);
         if (!(e0_ >= 0) || !(e1_ >= 0)) failAt(p.location(), "granier: Phong exponents e0, e1 must be >= 0");
-        ws_ = p.getSpectrumTexture("ws", SpectrumKind::Reflectance, 0.5f);
-        wd_ = p.getSpectrumTexture("wd", SpectrumKind::Reflectance, 0.5f);
+        ws_ = getSpectrumTexture(p, "ws", SpectrumKind::Reflectance, 0.5f);
+        wd_ = getSpectrumTexture(p, "wd", SpectrumKind::Reflectance, 0.5f);
     }
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {

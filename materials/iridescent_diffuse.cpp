@@ -21,7 +21,8 @@
 #include "core/sampling.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
-#include "spectral/film_coating.h"
+#include "materials/film_coating.h"
+#include "materials/textures/texture_params.h"
 
 #include <limits>
 
@@ -182,7 +183,7 @@ std::shared_ptr<Material> createIridescentDiffuse(const Properties& p) {
     if (spec.bounces > 1000)
         failAt(p.locationOf("bounces"), "iridescent_diffuse: bounces must be in [0, 1000], got ", spec.bounces);
     if (p.getBool("cache_internal_reflectance", true)) spec.precomputeInternalReflectance();
-    SpectrumTexturePtr rho = p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f);
+    SpectrumTexturePtr rho = getSpectrumTexture(p, "reflectance", SpectrumKind::Reflectance, 0.5f);
     const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
     const float alpha = p.getFloat("alpha", 0.0f);
     if (!(alpha >= 0)) failAt(p.locationOf("alpha"), "alpha must be >= 0, got ", alpha);

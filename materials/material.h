@@ -6,7 +6,8 @@
 
 #include "core/arena.h"
 #include "core/frame.h"
-#include "core/texture.h"
+#include "core/registry.h"
+#include "materials/textures/texture.h"
 #include "materials/bsdf.h"
 #include "spectral/wavelengths.h"
 
@@ -35,5 +36,7 @@ public:
 };
 
 using MaterialPtr = std::shared_ptr<const Material>;
+/// Every BSDF type, by its scene-file name (`<bsdf type="...">`).
+using MaterialRegistry = Registry<Material>;
 
 }  // namespace iris

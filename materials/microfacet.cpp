@@ -1,6 +1,7 @@
 #include "materials/microfacet.h"
 
 #include "core/error.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 
@@ -44,7 +45,7 @@ float lambdaExact(MicrofacetType type, float a2t2) {
     // Beckmann, [H14] eq. 72 with a = 1/(α tanθ): Λ = (erf(a) − 1)/2 + exp(−a²)/(2a√π).
     // For a ≥ 3.53 (α² tan²θ ≤ 0.08) Λ ≤ 1.1e-8 < 2⁻²⁶: every use adds Λ to 1 in float
     // (G1 = 1/(1 + Λ), 1/(1 + Λi + Λo)), where it vanishes, so 0 gives the same results without the
-    // erf and exp (tests/test_microfacet.cpp, BeckmannLambdaCutoffChangesNoG1).
+    // erf and exp (tests/materials/test_microfacet.cpp, BeckmannLambdaCutoffChangesNoG1).
     if (a2t2 <= kBeckmannNegligibleLambdaA2T2) return 0.0f;
     const double a = 1.0 / std::sqrt(double(a2t2));
     return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * kSqrtPi));
@@ -248,10 +249,10 @@ MicrofacetParams MicrofacetParams::read(const Properties& p, const std::string& 
     const bool aniso = p.has("alpha_u") || p.has("alpha_v");
     if (aniso) {
         if (p.has("alpha")) failAt(p.locationOf("alpha"), "give either 'alpha' or 'alpha_u'/'alpha_v', not both");
-        mp.alphaU = p.getFloatTexture("alpha_u");
-        mp.alphaV = p.getFloatTexture("alpha_v");
+        mp.alphaU = getFloatTexture(p, "alpha_u");
+        mp.alphaV = getFloatTexture(p, "alpha_v");
     } else {
-        mp.alphaU = mp.alphaV = p.getFloatTexture("alpha", defaultAlpha);
+        mp.alphaU = mp.alphaV = getFloatTexture(p, "alpha", defaultAlpha);
     }
     mp.sampleVisible = p.getBool("sample_visible", true);
     const std::string masking = p.getString("masking", "separable");

@@ -22,7 +22,7 @@
 #include "core/frame.h"
 #include "core/math.h"
 #include "core/properties.h"
-#include "core/texture.h"
+#include "materials/textures/texture.h"
 
 namespace iris {
 

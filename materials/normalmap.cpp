@@ -8,6 +8,7 @@
 // The map is always read as RGB (the texture is evaluated with RGB-mode wavelengths, where
 // textures return their RGB values unchanged), so the frame never depends on the wavelengths.
 #include "materials/perturbed_frame.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -36,7 +37,7 @@ private:
 };
 
 std::shared_ptr<Material> createNormalMap(const Properties& p) {
-    auto map = p.getSpectrumTexture("normalmap", SpectrumKind::Unbounded);
+    auto map = getSpectrumTexture(p, "normalmap", SpectrumKind::Unbounded);
     auto nested = createNestedMaterial(p, "normalmap", {"normalmap"});
     return std::make_shared<NormalMapMaterial>(std::move(map), std::move(nested));
 }

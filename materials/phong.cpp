@@ -9,6 +9,7 @@
 #include "core/registry.h"
 #include "core/sampling.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -71,11 +72,11 @@ private:
 };
 
 std::shared_ptr<Material> createPhong(const Properties& p) {
-    FloatTexturePtr exponent = p.getFloatTexture("exponent", 30.0f);
+    FloatTexturePtr exponent = getFloatTexture(p, "exponent", 30.0f);
     if (exponent->isConstant() && !(exponent->eval({}) >= 0))
         failAt(p.locationOf("exponent"), "phong: exponent must be >= 0, got ", exponent->eval({}));
-    return std::make_shared<PhongMaterial>(p.getSpectrumTexture("diffuse_reflectance", SpectrumKind::Reflectance, 0.5f),
-                                           p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 0.2f),
+    return std::make_shared<PhongMaterial>(getSpectrumTexture(p, "diffuse_reflectance", SpectrumKind::Reflectance, 0.5f),
+                                           getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 0.2f),
                                            std::move(exponent));
 }
 

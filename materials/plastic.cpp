@@ -8,6 +8,7 @@
 // specular_reflectance (1.0), nonlinear (false).
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
 
 namespace iris {
@@ -75,8 +76,8 @@ public:
         eta_ = intIor / extIor;
         // Fdr = 1 − Td with Td = (1/η²) 2∫(1 − F)μ dμ (α = 0 path of the integrator: no tables).
         fdr_ = float(1.0 - roughInternalDiffuseIntegral(MicrofacetType::Beckmann, eta_, 0.0, 1, 128));
-        rho_ = p.getSpectrumTexture("diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
-        ks_ = p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f);
+        rho_ = getSpectrumTexture(p, "diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
+        ks_ = getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
     }
 

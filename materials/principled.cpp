@@ -33,6 +33,7 @@
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/principled_terms.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -190,13 +191,13 @@ private:
 
 std::shared_ptr<Material> createPrincipled(const Properties& p) {
     auto unitParam = [&](const std::string& name, float def) {
-        FloatTexturePtr t = p.getFloatTexture(name, def);
+        FloatTexturePtr t = getFloatTexture(p, name, def);
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(t.get()); c && !(c->value() >= 0 && c->value() <= 1))
             failAt(p.locationOf(name), "principled: parameter '", name, "' must be in [0, 1], got ", c->value());
         return t;
     };
     PrincipledMaterial::Textures t;
-    t.baseColor = p.getSpectrumTexture("base_color", SpectrumKind::Reflectance, 0.5f);
+    t.baseColor = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
     t.subsurface = unitParam("subsurface", 0.0f);
     t.metallic = unitParam("metallic", 0.0f);
     t.specular = unitParam("specular", 0.5f);

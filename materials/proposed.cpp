@@ -27,6 +27,7 @@
 
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 #include "materials/thesis_channels.h"
 #include "materials/thesis_rough_coat.h"
 
@@ -220,10 +221,10 @@ public:
         if (lo < RoughTransmittanceTables::kEtaMin || hi > RoughTransmittanceTables::kEtaMax)
             failAt(p.location(), "proposed: eta_t/eta_i must lie in the tabulated range [", RoughTransmittanceTables::kEtaMin,
                    ", ", RoughTransmittanceTables::kEtaMax, "], got [", lo, ", ", hi, "]");
-        thickness_ = p.getFloatTexture("thickness", 1000.0f);
+        thickness_ = getFloatTexture(p, "thickness", 1000.0f);
         if (thickness_->isConstant() && !(thickness_->eval({}) >= 0))
             failAt(p.locationOf("thickness"), "proposed: thickness must be >= 0 nm, got ", thickness_->eval({}));
-        alpha_ = p.getFloatTexture("alpha", 0.08f);
+        alpha_ = getFloatTexture(p, "alpha", 0.08f);
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
             c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
             failAt(p.locationOf("alpha"), "proposed: alpha must be in [0, 1], got ", c->value());
@@ -232,8 +233,8 @@ public:
         } catch (const Error& e) {
             failAt(p.locationOf("distribution"), "proposed: ", e.what());
         }
-        ws_ = p.getSpectrumTexture("ws", SpectrumKind::Reflectance, 0.6f);
-        wd_ = p.getSpectrumTexture("wd", SpectrumKind::Reflectance, 0.4f);
+        ws_ = getSpectrumTexture(p, "ws", SpectrumKind::Reflectance, 0.6f);
+        wd_ = getSpectrumTexture(p, "wd", SpectrumKind::Reflectance, 0.4f);
         // Weights that are one number at every point and wavelength (the thesis' ws, wd): read
         // them once here instead of evaluating the textures per shading point (the same values:
         // ConstantSpectrum::sample fills every entry with its value).

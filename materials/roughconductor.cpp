@@ -5,10 +5,11 @@
 //   distribution ("beckmann"), alpha (0.1), alpha_u / alpha_v, sample_visible (true),
 //   masking, beckmann_rational_g1   see MicrofacetParams (materials/microfacet.h)
 #include "core/registry.h"
-#include "materials/conductor_presets.h"
+#include "spectral/conductor_presets.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -92,7 +93,7 @@ std::shared_ptr<Material> createRoughConductor(const Properties& p) {
             failAt(p.locationOf(name), "roughconductor: ", name, " must be >= 0, got ", t->eval({}));
     if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "roughconductor: ext_ior must be > 0, got ", c.extIOR);
     return std::make_shared<RoughConductorMaterial>(
-        std::move(mp), std::move(c), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f));
+        std::move(mp), std::move(c), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }
 
 }  // namespace

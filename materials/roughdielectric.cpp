@@ -14,10 +14,11 @@
 // Wavelength dependence as in "dielectric": one η (hero or green channel) decides m and the
 // Jacobians; the Fresnel factor uses each channel's own η.
 #include "core/registry.h"
-#include "materials/dispersion.h"
+#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -138,8 +139,8 @@ std::shared_ptr<Material> createRoughDielectric(const Properties& p) {
                    in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<RoughDielectricMaterial>(
         std::move(mp), std::move(in), std::move(ext),
-        p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
-        p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
+        getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),
+        getSpectrumTexture(p, "specular_transmittance", SpectrumKind::Reflectance, 1.0f));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 //   nonlinear             bool (ρ/(1−ρFdr) instead of ρ/(1−Fdr))   default false
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
 
 namespace iris {
@@ -102,7 +103,7 @@ public:
         } catch (const Error& e) {
             failAt(p.locationOf("distribution"), "roughplastic: ", e.what());
         }
-        alpha_ = p.getFloatTexture("alpha", 0.1f);
+        alpha_ = getFloatTexture(p, "alpha", 0.1f);
         const float intIor = p.getFloat("int_ior", 1.49f), extIor = p.getFloat("ext_ior", 1.000277f);
         if (!(intIor > 0) || !(extIor > 0)) failAt(p.location(), "roughplastic: int_ior and ext_ior must be positive");
         eta_ = intIor / extIor;
@@ -112,8 +113,8 @@ public:
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
             c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
             failAt(p.locationOf("alpha"), "roughplastic: alpha must be in [0, 1], got ", c->value());
-        rho_ = p.getSpectrumTexture("diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
-        ks_ = p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f);
+        rho_ = getSpectrumTexture(p, "diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
+        ks_ = getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
         tables_ = &roughPlasticTables(type_);  // first use builds or loads them
         // Constant α: the (η, α) stencil collapsed once into one μ-line (RoughTablesAtAlpha).

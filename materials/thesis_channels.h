@@ -15,6 +15,7 @@
 #include "core/properties.h"
 #include "spectral/channel_lerp.h"
 #include "spectral/spectrum.h"
+#include "spectral/spectrum_params.h"
 #include "spectral/wavelengths.h"
 
 namespace iris {
@@ -37,7 +38,7 @@ public:
         try {
             return ChannelIOR(p.getRGB(name, def), lambdas);
         } catch (const Error&) {
-            return ChannelIOR(p.getSpectrum(name, SpectrumKind::Unbounded), lambdas);
+            return ChannelIOR(getSpectrum(p, name, SpectrumKind::Unbounded), lambdas);
         }
     }
 

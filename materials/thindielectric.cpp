@@ -6,9 +6,10 @@
 // The lobe is chosen with the mean of R' over the wavelengths; no wavelength termination is
 // needed since directions do not depend on η.
 #include "core/registry.h"
-#include "materials/dispersion.h"
+#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -69,8 +70,8 @@ std::shared_ptr<Material> createThinDielectric(const Properties& p) {
             failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "thindielectric: int_ior and ext_ior must be > 0, got ",
                    in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<ThinDielectricMaterial>(
-        std::move(in), std::move(ext), p.getSpectrumTexture("specular_reflectance", SpectrumKind::Reflectance, 1.0f),
-        p.getSpectrumTexture("specular_transmittance", SpectrumKind::Reflectance, 1.0f));
+        std::move(in), std::move(ext), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),
+        getSpectrumTexture(p, "specular_transmittance", SpectrumKind::Reflectance, 1.0f));
 }
 
 }  // namespace

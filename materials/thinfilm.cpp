@@ -1,7 +1,7 @@
 // Thin-film interference on a smooth or rough interface (plugin "thinfilm"): a microfacet
 // reflection lobe whose Fresnel term is the exact reflectance of a film stack (film + optional
 // extra layers) over a conductor or dielectric substrate, at each path wavelength and at the
-// microfacet angle (spectral/film_coating.h):
+// microfacet angle (materials/film_coating.h):
 //   rough:  f(wo, wi) = R_stack(λ, wo·h) D(h) G(wi, wo, h) / (4 cosθo cosθi)   (Walter et al. 2007
 //           eq. 20 with F replaced by the stack reflectance; thesis 000 eq. 2.6),
 //   smooth: delta reflection with coefficient R_stack(λ, cosθo).
@@ -17,7 +17,7 @@
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
-#include "spectral/film_coating.h"
+#include "materials/film_coating.h"
 
 #include <limits>
 

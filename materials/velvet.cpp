@@ -12,6 +12,7 @@
 #include "materials/cloth_distributions.h"
 #include "materials/cloth_sampling.h"
 #include "materials/material.h"
+#include "materials/textures/texture_params.h"
 
 namespace iris {
 namespace {
@@ -45,8 +46,8 @@ private:
 };
 
 std::shared_ptr<Material> createVelvet(const Properties& p) {
-    auto r = p.getSpectrumTexture("reflectance", SpectrumKind::Reflectance, 0.5f);
-    auto sigma = p.getFloatTexture("sigma", 0.5f);
+    auto r = getSpectrumTexture(p, "reflectance", SpectrumKind::Reflectance, 0.5f);
+    auto sigma = getFloatTexture(p, "sigma", 0.5f);
     if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(sigma.get()); c && !(c->value() > 0))
         failAt(p.locationOf("sigma"), "velvet: sigma must be > 0, got ", c->value());
     return std::make_shared<VelvetMaterial>(std::move(r), std::move(sigma));

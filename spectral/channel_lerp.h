@@ -2,7 +2,7 @@
 // at the wavelengths the channels stand for, read at any wavelength in spectral mode (constant
 // outside the channel wavelengths' range; the spectral reading of the thesis' per-channel η_t,
 // thesis 000 §2.4 / §3.2, see materials/thesis_channels.h). Used by the thesis models' per-channel indices
-// (materials/thesis_channels.h) and by the thin-film coating's indices (spectral/film_coating.h).
+// (materials/thesis_channels.h) and by the thin-film coating's indices (materials/film_coating.h).
 // The points are sorted once, when the parameter is read, not at every evaluation.
 #pragma once
 

@@ -18,12 +18,12 @@ float zBar(float lambda);
 float d65(float lambda);
 
 /// d65 for `count` wavelengths at once (count a multiple of 4, e.g. SampledSpectrum::paddedSize(n)):
-/// out[j] = d65(lambda[j]), bit-identical to the one-wavelength lookup (tests/test_spectral_lanes.cpp),
+/// out[j] = d65(lambda[j]), bit-identical to the one-wavelength lookup (tests/spectral/test_spectral_lanes.cpp),
 /// written as loops over lanes that the compiler vectorises (the table reads stay scalar loads).
 void d65Lanes(const float* lambda, int count, float* out);
 
 /// Σ_{j<n} weight[j] · xyzBar(lambda[j]), summed in the order j = 0, 1, … per component: the
-/// value of that plain loop, bit for bit (tests/test_spectral_lanes.cpp). lambda and weight must
+/// value of that plain loop, bit for bit (tests/spectral/test_spectral_lanes.cpp). lambda and weight must
 /// be readable up to n rounded up to a multiple of 4 (lanes of SampledWavelengths and
 /// SampledSpectrum are).
 vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n);

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/source_tree.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -33,7 +34,7 @@ void applyProcessor(const OCIO::ConstProcessorRcPtr& proc, float* rgb, size_t pi
 
 }  // namespace
 
-std::string ColorManager::shippedConfigPath() { return std::string(IRIS_SOURCE_DIR) + "/spectral/ocio/config.ocio"; }
+std::string ColorManager::shippedConfigPath() { return sourcePath("spectral/ocio/config.ocio"); }
 
 ColorManager::ColorManager(const std::string& configPath) {
     auto impl = std::make_shared<Impl>();

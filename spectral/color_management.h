@@ -14,7 +14,7 @@ namespace iris {
 class ColorManager {
 public:
     /// configPath: explicit path (--ocio-config); if empty, $OCIO if set, else the shipped
-    /// spectral/ocio/config.ocio (located through the IRIS_SOURCE_DIR macro). Throws iris::Error
+    /// spectral/ocio/config.ocio (core/source_tree.h). Throws iris::Error
     /// naming the file on failure.
     explicit ColorManager(const std::string& configPath = "");
     const std::string& configPath() const;
@@ -26,7 +26,7 @@ public:
     void toDisplay(float* rgb, size_t pixelCount, const std::string& from, const std::string& display = "",
                    const std::string& view = "") const;
 
-    /// The shipped config (IRIS_SOURCE_DIR/spectral/ocio/config.ocio).
+    /// The shipped config (sourcePath("spectral/ocio/config.ocio")).
     static std::string shippedConfigPath();
 
 private:

@@ -1,5 +1,5 @@
 // The fast exact single-film Airy kernel (film_stack.h airySingleFilmFast), inline so that
-// FilmCoating's per-path loop over wavelengths (spectral/film_coating.cpp) can inline it; see
+// FilmCoating's per-path loop over wavelengths (materials/film_coating.cpp) can inline it; see
 // film_stack.h for the formulation and docs/thin_film.md §8.
 #pragma once
 
@@ -55,7 +55,7 @@ template <typename T>
 
 /// sin x and cos x together, inline (one polynomial pair instead of a libm sincos call), for the
 /// Airy phase: sinCosReduced, then the quadrant j mod 4. |x| > 1e5 (films thicker than ~1 mm):
-/// std::sin / std::cos. Agreement with glibc: tests/test_film_fast.cpp (FilmFastPath.SinCosMatchesLibm).
+/// std::sin / std::cos. Agreement with glibc: tests/materials/test_film_fast.cpp (FilmFastPath.SinCosMatchesLibm).
 inline void sinCos(double x, double& sinX, double& cosX) {
     if (!(std::abs(x) <= 1e5)) {
         sinX = std::sin(x);

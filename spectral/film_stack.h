@@ -110,7 +110,7 @@ AiryFilmConstants airyFilmConstants(double lambdaNm, double thicknessNm, const S
 /// radicand is real (lossless film or substrate: real below the critical angle, imaginary beyond).
 /// Returns false (out untouched) when den vanishes or underflows (q1 = 0 exactly) or a result is
 /// not finite; airySingleFilm then uses the transfer matrix. Tested against the transfer matrix
-/// and the reference in tests/test_film_fast.cpp.
+/// and the reference in tests/materials/test_film_fast.cpp.
 bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
                         const SquaredIndex& substrate, FilmStackResult& out);
 

@@ -1,7 +1,7 @@
 // Run-time choice between two builds of a per-wavelength lane loop: the baseline x86-64 (SSE2,
 // 4 floats per instruction) and AVX2 (8 floats per instruction, no FMA: the floating-point
 // operations and their order are the same, so the two builds give bit-identical results;
-// tests/test_spectral_lanes.cpp runs both and compares). The binary stays runnable on any x86-64
+// tests/spectral/test_spectral_lanes.cpp runs both and compares). The binary stays runnable on any x86-64
 // (no -march flag): the AVX2 build is only called when the CPU reports AVX2. A kernel is written
 // once as an always-inline body and instantiated twice:
 //

@@ -24,7 +24,7 @@ public:
 private:
     /// Index of the first sample strictly above lambda (std::upper_bound), for lambda inside
     /// (front, back): a uniform bucket grid over the table gives a start index, from which a short
-    /// walk finds the same index as the binary search (tests/test_spectra.cpp compares them).
+    /// walk finds the same index as the binary search (tests/spectral/test_spectra.cpp compares them).
     size_t upperIndex(float lambda) const;
 
     std::vector<float> lambdas_, values_;

@@ -88,7 +88,7 @@ SampledSpectrum RGBSpectrum::sample(const SampledWavelengths& wl) const {
     }
     // eval at every lane, in lane loops the compiler vectorises (SSE2: 4 wavelengths per
     // instruction, the sigmoid's sqrt and division included). The operations per lane are those
-    // of eval, in the same order: the same values (tests/test_rgb_upsampling.cpp). The D65 factor
+    // of eval, in the same order: the same values (tests/spectral/test_rgb_upsampling.cpp). The D65 factor
     // is read from the values cached when the wavelengths were sampled (= cie::d65(λ)).
     const int padded = SampledSpectrum::paddedSize(wl.size());
     const float d65Scale = d65Scale_;

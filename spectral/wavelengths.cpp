@@ -29,9 +29,9 @@ const double kVisInvNorm = 1.0 / double(kVisNorm);
 /// Inverse-CDF sample of the visible pdf and its density. Invert F(λ) = (tanh(a(λ−c)) −
 /// tanh(a(λmin−c))) / (a·norm) for t = tanh(a(λ−c)); then λ = c + atanh(t)/a with
 /// atanh t = ½ ln((1 + t)/(1 − t)), the logarithm by logPositive (float; λ differs from the
-/// double-precision libm form by about an ulp of λ, tests/test_wavelengths.cpp), and, because
+/// double-precision libm form by about an ulp of λ, tests/spectral/test_wavelengths.cpp), and, because
 /// 1/cosh²x = 1 − tanh²x, the density is p = (1 − t²)/norm without another exp: it is
-/// visibleWavelengthPdf at the unrounded λ (tests/test_wavelengths.cpp compares the two).
+/// visibleWavelengthPdf at the unrounded λ (tests/spectral/test_wavelengths.cpp compares the two).
 /// Inline and branch-free: sampleVisible runs it over all lanes in one vectorised loop.
 struct VisibleSample {
     float lambda, pdf;

@@ -8,7 +8,7 @@
 
 #include "core/arena.h"
 #include "core/registry.h"
-#include "materials/belcour_barla.h"
+#include "spectral/belcour_barla.h"
 #include "materials/material.h"
 #include "spectral/film_stack.h"
 

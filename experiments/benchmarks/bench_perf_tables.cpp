@@ -21,10 +21,10 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "core/film.h"
-#include "core/loader/scene_loader.h"
-#include "core/renderer.h"
-#include "core/scene.h"
+#include "render/film.h"
+#include "render/loader/scene_loader.h"
+#include "render/renderer.h"
+#include "render/scene.h"
 #include "materials/rough_plastic_tables.h"
 #include "spectral/rgb_spectrum_grid.h"
 

@@ -10,18 +10,19 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.h"
-#include "core/loader/scene_loader.h"
-#include "core/renderer.h"
+#include "render/camera.h"
+#include "render/loader/scene_loader.h"
+#include "render/renderer.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "core/scene.h"
+#include "core/source_tree.h"
+#include "render/scene.h"
 
 using namespace iris;
 
 namespace {
 
-std::string gScenePath = std::string(IRIS_SOURCE_DIR) + "/scenes/default.xml";
+std::string gScenePath = iris::sourcePath("scenes/default.xml");
 
 const Scene& scene() {
     static std::unique_ptr<Scene> s = [] {

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/image.h"
+#include "core/io/image.h"
 
 namespace iris {
 

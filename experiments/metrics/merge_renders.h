@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
+#include "core/io/image.h"
 
 namespace iris {
 

@@ -752,7 +752,7 @@ def wins_text(ctx):
             env, rgb, d65 = share(p, r"EnvMapLight::lookup"), share(p, r"RGBSpectrum::eval"), share(p, r"cie::d65")
             dist = share(p, r"Distribution1D::sampleContinuous|Distribution2D::pdf")
             if rgb + d65 > 3:
-                L.append(f"- **Spectral environment-map lookup** (core/lights/envmap_light.cpp, `EnvMapLight::lookup`), "
+                L.append(f"- **Spectral environment-map lookup** (render/lights/envmap_light.cpp, `EnvMapLight::lookup`), "
                          f"profile `{name}`: `lookup` {env:.1f} % + `RGBSpectrum::eval` {rgb:.1f} % + `cie::d65` {d65:.1f} % "
                          "of the renderer's time. Each lookup evaluates 8 grid-corner spectra (virtual calls, sigmoid "
                          "polynomial, and D65 again in each corner because the corners are Illuminant-kind) per wavelength. "
@@ -797,10 +797,10 @@ def wins_text(ctx):
                  + (f"`{next(iter(oiio))}` alone brings {next(iter(oiio.values()))} shared libraries "
                     "(its image-format plug-ins: DICOM, video, JPEG-XL, ...). " if oiio else "")
                  + "EXR files are already read and written with OpenEXR directly (core/image.cpp); OpenImageIO "
-                 "serves only the PNG preview and non-EXR inputs (core/image.cpp, core/textures/bitmap.cpp). "
+                 "serves only the PNG preview and non-EXR inputs (core/image.cpp, materials/textures/bitmap.cpp). "
                  "Loading OpenImageIO on demand (a small `dlopen`ed module used only when a PNG is written or a "
                  "non-EXR file read) would remove most of the start-up time of EXR-only runs (`render --version` "
-                 "costs as much as a whole one-sphere render). Owners: core/image.cpp, core/textures/bitmap.cpp, "
+                 "costs as much as a whole one-sphere render). Owners: core/image.cpp, materials/textures/bitmap.cpp, "
                  "CMakeLists.txt.")
     if "tables_build" in P:
         p = P["tables_build"]
@@ -838,10 +838,10 @@ def payg_text(ctx):
              "- Rough-plastic tables: `roughPlasticTables(type)` (materials/rough_plastic_tables.h) is the only "
              "acquirer and is called only by rough-plastic-type materials (roughplastic, proposed); measured above.\n"
              "- Environment-map sampling distribution: built in the `EnvMapLight` constructor "
-             "(core/lights/envmap_light.cpp), i.e. only when the scene has an `envmap` emitter; its spectral "
+             "(render/lights/envmap_light.cpp), i.e. only when the scene has an `envmap` emitter; its spectral "
              "chromaticity grid is built lazily (`std::call_once`) at the first spectral lookup, never in RGB mode.\n"
              "- RGB→spectrum grid (`RGBSpectrumGrid::instance()`, spectral/rgb_spectrum_grid.cpp): requested only by "
-             "bitmap textures in spectral mode (core/textures/bitmap_texture.cpp); measured above (`built()`).\n"
+             "bitmap textures in spectral mode (materials/textures/bitmap_texture.cpp); measured above (`built()`).\n"
              "- Film stacks: the film-stack optics (spectral/film_stack.*) are evaluated per wavelength at shading "
              "time by the thin-film materials only; nothing is precomputed for scenes without them.\n")
     return "\n".join(L)

@@ -1,4 +1,4 @@
-"""Tests of the experiment framework (run by ctest through tests/test_experiments_scripts.cpp, or
+"""Tests of the experiment framework (run by ctest through tests/experiments/test_experiments_scripts.cpp, or
 directly: IRIS_BUILD_DIR=build python3 -m unittest discover -s experiments/tests).
 
 Uses a fake renderer (fake_render.py) and the real compare / merge tools from $IRIS_BUILD_DIR."""

@@ -1,0 +1,180 @@
+// A thin-film coating as materials use it: the scene-level description (indices as spectra or
+// per-channel triples, thickness texture, extra layers, substrate, phase mode) and its per-path
+// instance with the complex indices at the path's wavelengths, which evaluates the exact stack
+// reflectance / transmittance (spectral/film_stack.h) at any angle. Parameters: docs/thin_film.md.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/arena.h"
+#include "core/properties.h"
+#include "materials/textures/texture.h"
+#include "spectral/dispersion.h"
+#include "spectral/channel_lerp.h"
+#include "spectral/film_airy_batch.h"
+#include "spectral/film_stack.h"
+#include "spectral/sampled_spectrum.h"
+#include "spectral/wavelengths.h"
+
+namespace iris {
+
+/// An index of refraction given as a spectrum, or as a per-channel triple at channel wavelengths
+/// (RGB mode: the triple itself, unchanged; spectral mode: piecewise-linear through the triple
+/// across the channel wavelengths, constant outside).
+class IorSpec {
+public:
+    IorSpec() = default;
+    explicit IorSpec(float c) : values_(c) {}
+    explicit IorSpec(SpectrumPtr s) : spectrum_(std::move(s)) {}
+    /// A dielectric index read by spectral/dispersion.h readIOR (presets, Cauchy, Sellmeier, ...).
+    static IorSpec fromIOR(const IOR& ior);
+    /// Read `name` (float, rgb triple or spectrum) from p; `def` when absent.
+    static IorSpec fromProperties(const Properties& p, const std::string& name, float def,
+                                  const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
+    /// Value for entry k of a path's wavelengths.
+    float sample(const SampledWavelengths& wl, int k) const;
+    /// Values for every entry of a path's wavelengths.
+    SampledSpectrum sampleAll(const SampledWavelengths& wl) const;
+    /// Value at a wavelength (per-channel triples interpolated).
+    float at(float lambda) const;
+
+private:
+    /// A constant, or a triple of equal values (when not a spectrum): exactly values_[0] at every
+    /// wavelength, not a lerp of it (whose rounding made e.g. substrate_eta = 1.4 look dispersive).
+    bool constantValue() const { return !perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2]); }
+
+    bool perChannel_ = false;
+    vec3 values_{1.0f};
+    vec3 lambdas_{645.0f, 525.0f, 445.0f};
+    ChannelLerp lerp_;  // per-channel triples: the values across lambdas_
+    SpectrumPtr spectrum_;
+    std::shared_ptr<const IOR> ior_;
+};
+
+struct AiryAngle;  // spectral/film_airy.h
+
+enum class FilmSubstrate { Conductor, Dielectric };
+enum class FilmRGBMode { Point, BelcourBarla };
+
+/// Scene-level description of a coating (shared by thinfilm and iridescent_diffuse).
+struct FilmCoatingSpec {
+    float extIor = 1.0f;  // incident (exterior) medium, real
+    IorSpec filmIor{1.5f}, filmK{0.0f};
+    FloatTexturePtr thickness;  // nm
+    struct ExtraLayer {
+        IorSpec ior, k;
+        float thicknessNm = 0;
+    };
+    std::vector<ExtraLayer> extra;  // below the film, top → bottom
+    IorSpec substrateEta{1.5f}, substrateK{0.0f};
+    FilmPhaseMode mode = FilmPhaseMode::Exact;
+    int bounces = 1;
+    FilmRGBMode rgbMode = FilmRGBMode::Point;
+
+    /// Cache of the hemispherical internal reflectance (FilmCoating::internalHemisphericalReflectance)
+    /// for a constant thickness: spectral mode reads r_int(λ) from a table at kRintStep nm over
+    /// [360, 830] (linear interpolation), RGB mode with the given channel wavelengths reads rgb.
+    struct RintCache {
+        static constexpr float kStep = 0.5f;
+        std::vector<float> table;  // λ = 360 + i·kStep
+        vec3 rgbLambdas{0.0f}, rgb{0.0f};
+    };
+    std::shared_ptr<const RintCache> rintCache;
+    /// Fill rintCache (only when the thickness is a constant texture; otherwise a no-op).
+    void precomputeInternalReflectance(const vec3& rgbLambdas = vec3(645.0f, 525.0f, 445.0f));
+
+    /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
+    /// where film_ior and layerN_ior accept every form of spectral/dispersion.h readIOR —
+    /// float, preset name, rgb, spectrum, <prefix>_cauchy_a/_b, <prefix>_sellmeier_b/_c —,
+    /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
+    /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
+    /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0,
+    /// and an etaName of the form "<prefix>_ior" is read with readIOR, e.g. "int_ior").
+    /// With a kName, `substrate_material` may instead name a conductor preset (conductor_presets.h).
+    static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
+                                          float defThickness = 300.0f, const char* etaName = "substrate_eta",
+                                          const char* kName = "substrate_k");
+};
+
+/// The arguments of FilmCoating's per-path constructor, so that a BSDF can build its coating member
+/// in place (FilmCoating is over 1 KB: a temporary plus a copy per shading point is avoidable).
+struct FilmCoatingArgs {
+    const FilmCoatingSpec& spec;
+    const TextureQuery& tex;
+    const SampledWavelengths& wl;
+    Arena& arena;
+};
+
+/// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
+class FilmCoating {
+public:
+    /// Evaluate the spec at a surface point for wavelengths wl (extra layers go to the arena).
+    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena);
+    /// Spectral-mode instance at explicit wavelengths (n ≤ kMaxWavelengths), for precomputation.
+    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena);
+
+    int size() const { return n_; }
+    double thicknessNm() const { return thickness_; }
+
+    /// Reflectance of the stack for light from the exterior at cosθ (to the interface normal), per
+    /// entry: RGB Belcour–Barla mode → spectrally integrated RGB; otherwise the exact / truncated /
+    /// incoherent stack at each wavelength (truncated sums clamped to [0, 1]).
+    SampledSpectrum reflectance(float cosTheta) const;
+    /// Reflectance and transmittance (into the substrate) at each wavelength. Belcour–Barla mode
+    /// over a non-absorbing substrate: the integrated R and T = 1 − R (the film is lossless there);
+    /// over an absorbing one, point values.
+    void reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
+    /// The stack lit from the substrate side (substrate must be a real dielectric medium): light
+    /// in the substrate at cosθ towards the film, exiting into the exterior medium.
+    void fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
+    /// Stack result at entry k (exterior side).
+    FilmStackResult stackRT(int k, double cosTheta) const;
+    FilmStackResult stackRTFromBelow(int k, double cosTheta) const;
+
+    /// Hemispherical (cosine-weighted) reflectance of the stack lit from the substrate side,
+    /// r_int = 2 ∫_0^1 R_below(μ) μ dμ, at entry k: Gauss–Legendre quadrature (16 nodes) on each side of
+    /// the critical cosine μc = sqrt(1 − (n_ext/n_sub)²), where R jumps to total reflection (above μc
+    /// with μ = μc + (1 − μc) t² to remove the square-root edge).
+    /// Uses the spec's RintCache when it applies (constant thickness; RGB: same channel wavelengths).
+    double internalHemisphericalReflectance(int k) const;
+    /// Always the quadrature (for tests of the cache).
+    double internalHemisphericalReflectanceDirect(int k) const;
+
+    double extIor() const { return extIor_; }
+    complexd substrateIor(int k) const { return substrate_[k]; }
+
+private:
+    FilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
+    FilmStackResult exactFallback(int k, double cosTheta, bool below) const;  // transfer matrix
+    /// Builds the Airy arrays or the layer rows from lambda_, film_, substrate_ (set by the
+    /// constructors); extraIor(j, k) is the complex index of extra layer j at entry k.
+    template <typename ExtraIorAt>
+    void init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor);
+
+    int n_ = 0, nExtra_ = 0, bounces_ = 1;
+    FilmPhaseMode mode_ = FilmPhaseMode::Exact;
+    bool belcourBarla_ = false;
+    double extIor_ = 1.0, thickness_ = 0.0;
+    double lambda_[kMaxWavelengths];
+    complexd film_[kMaxWavelengths];
+    complexd substrate_[kMaxWavelengths];
+    Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
+    /// Exact mode with a single film: the angle-independent Airy constants per entry (arena,
+    /// structure of arrays padded to kAiryLanes for spectral/film_airy_batch.h), hoisted out of every
+    /// evaluation; nullptr otherwise. Arrays: film ñ1² (re, im), 1/ñ1² (re, im), k0 d, substrate ñ2²
+    /// (re, im), 1/ñ2² (re, im), and the exterior's ñ0², 1/ñ0² repeated (the substrate of the
+    /// reversed stack, fromBelow).
+    enum AiryArray { kN1Re, kN1Im, kInv1Re, kInv1Im, kK0d, kN2Re, kN2Im, kInv2Re, kInv2Im,
+                     kExtRe, kExtIm, kExtInvRe, kExtInvIm, kAiryArrays };
+    const double* airy_ = nullptr;
+    int airyStride_ = 0;  // padded entry count: array a starts at airy_ + a·airyStride_
+    const double* airyArray(AiryArray a) const { return airy_ + a * airyStride_; }
+    /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
+    void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
+    const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
+    bool rgb_ = false;
+};
+
+}  // namespace iris

@@ -1,0 +1,94 @@
+#include "render/lights/area_light.h"
+
+#include "core/frame.h"
+
+namespace iris {
+
+AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance) : mesh_(mesh), radiance_(std::move(radiance)) {
+    std::vector<float> areas(mesh->triangleCount());
+    for (size_t i = 0; i < areas.size(); ++i) {
+        const vec3& a = mesh->positions[mesh->indices[3 * i]];
+        const vec3& b = mesh->positions[mesh->indices[3 * i + 1]];
+        const vec3& c = mesh->positions[mesh->indices[3 * i + 2]];
+        areas[i] = 0.5f * glm::length(glm::cross(b - a, c - a));
+        area_ += areas[i];
+    }
+    triangles_ = Distribution1D(areas);
+}
+
+AreaLight::AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance)
+    : center_(center), radius_(radius), inward_(inward), area_(4.0f * kPi * radius * radius), radiance_(std::move(radiance)) {}
+
+SampledSpectrum AreaLight::Le(const vec3&, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
+    if (glm::dot(n, w) <= 0) return SampledSpectrum(wl.size());  // one-sided emitter
+    return radiance_->sample(wl);
+}
+
+std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const {
+    LightSample ls;
+    if (mesh_) {
+        // Uniform area sampling: pick a triangle by area, then a point on it (pdf_A = 1/A).
+        float uRemapped;
+        const int tri = triangles_.sampleDiscrete(u.x, nullptr, &uRemapped);
+        const vec2 b = sampleUniformTriangle(vec2(uRemapped, u.y));
+        const uint32_t* idx = &mesh_->indices[3 * tri];
+        const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
+        ls.pLight = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
+        ls.nLight = glm::normalize(glm::cross(bb - a, c - a));
+        const vec3 d = ls.pLight - p;
+        const float dist2 = glm::dot(d, d);
+        if (dist2 <= 0) return std::nullopt;
+        ls.wi = d / std::sqrt(dist2);
+        const float cosL = std::abs(glm::dot(ls.nLight, ls.wi));
+        if (cosL <= 1e-8f) return std::nullopt;
+        ls.pdf = dist2 / (cosL * area_);  // area → solid angle
+    } else {
+        const vec3 toC = center_ - p;
+        const float dc2 = glm::dot(toC, toC);
+        if (dc2 <= radius_ * radius_ * 1.00001f) {
+            // Inside (or on) the sphere: uniform area sampling.
+            const vec3 n = sampleUniformSphere(u);
+            ls.pLight = center_ + radius_ * n;
+            ls.nLight = inward_ ? -n : n;
+            const vec3 d = ls.pLight - p;
+            const float dist2 = glm::dot(d, d);
+            if (dist2 <= 0) return std::nullopt;
+            ls.wi = d / std::sqrt(dist2);
+            const float cosL = std::abs(glm::dot(n, ls.wi));
+            if (cosL <= 1e-8f) return std::nullopt;
+            ls.pdf = dist2 / (cosL * area_);
+        } else {
+            // Cone sampling of the visible cap (pbrt-v4 §6.2.4): uniform in the subtended cone.
+            const float dc = std::sqrt(dc2);
+            const float sin2Max = radius_ * radius_ / dc2;
+            const float cosMax = safeSqrt(1.0f - sin2Max);
+            const Frame f = Frame::fromNormal(toC / dc);
+            ls.wi = f.toWorld(sampleUniformCone(u, cosMax));
+            // Nearest intersection of the ray with the sphere.
+            const float b = glm::dot(ls.wi, toC);
+            const float disc = b * b - (dc2 - radius_ * radius_);
+            const float t = b - safeSqrt(disc);
+            ls.pLight = p + t * ls.wi;
+            const vec3 n = glm::normalize(ls.pLight - center_);
+            ls.nLight = inward_ ? -n : n;
+            ls.pdf = uniformConePdf(cosMax);
+        }
+    }
+    ls.L = Le(ls.pLight, ls.nLight, -ls.wi, wl);
+    if (ls.L.isBlack()) return std::nullopt;
+    return ls;
+}
+
+float AreaLight::pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const {
+    if (!hit) return 0.0f;
+    if (!mesh_) {
+        const vec3 toC = center_ - p;
+        const float dc2 = glm::dot(toC, toC);
+        if (dc2 > radius_ * radius_ * 1.00001f) return uniformConePdf(safeSqrt(1.0f - radius_ * radius_ / dc2));
+    }
+    const float cosL = std::abs(glm::dot(hit->ng, wi));
+    if (cosL <= 1e-8f) return 0.0f;
+    return hit->t * hit->t / (cosL * area_);
+}
+
+}  // namespace iris

@@ -1,0 +1,38 @@
+// Diffuse area light attached to a shape (Mitsuba "area" emitter): uniform radiance on the side
+// the surface normal points to. Meshes are sampled uniformly by area; spheres by the cone of
+// directions they subtend (pbrt-v4 §6.2.4).
+#pragma once
+
+#include <vector>
+
+#include "render/lights/light.h"
+#include "core/mesh.h"
+#include "core/sampling.h"
+#include "spectral/spectrum.h"
+
+namespace iris {
+
+class AreaLight final : public Light {
+public:
+    /// Mesh emitter (mesh in world space; must outlive the light).
+    AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance);
+    /// Sphere emitter; `inward` when the sphere's normals are flipped.
+    AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance);
+
+    Type type() const override { return Type::Area; }
+    std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const override;
+    float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const override;
+    SampledSpectrum Le(const vec3& p, const vec3& n, const vec3& w, const SampledWavelengths& wl) const override;
+    float area() const { return area_; }
+
+private:
+    const TriangleMesh* mesh_ = nullptr;
+    Distribution1D triangles_;
+    vec3 center_{0.0f};
+    float radius_ = 0.0f;
+    bool inward_ = false;
+    float area_ = 0.0f;
+    SpectrumPtr radiance_;
+};
+
+}  // namespace iris

@@ -1,0 +1,230 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "render/camera.h"
+#include "core/error.h"
+#include "render/integrator.h"
+#include "spectral/xyz.h"
+
+namespace iris {
+
+namespace {
+constexpr int kTile = 16;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Prints "[=====>    ] 45% 12/27 spp  ETA 3.2 s" on stderr at most 4 times a second.
+class ProgressBar {
+public:
+    ProgressBar(bool enabled, Clock::time_point start) : enabled_(enabled), start_(start) {
+        if (enabled_) thread_ = std::thread([this] { loop(); });
+    }
+    ~ProgressBar() { finish(); }
+    void update(double fraction, const std::string& label) {
+        std::lock_guard<std::mutex> lock(m_);
+        fraction_ = fraction;
+        label_ = label;
+    }
+    void finish() {
+        if (!thread_.joinable()) return;
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            done_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+        print();
+        std::fprintf(stderr, "\n");
+    }
+
+private:
+    void loop() {
+        std::unique_lock<std::mutex> lock(m_);
+        while (!done_) {
+            cv_.wait_for(lock, std::chrono::milliseconds(250));
+            if (done_) break;
+            lock.unlock();
+            print();
+            lock.lock();
+        }
+    }
+    void print() {
+        double f;
+        std::string label;
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            f = std::clamp(fraction_, 0.0, 1.0);
+            label = label_;
+        }
+        const double el = secondsSince(start_);
+        const int width = 30, filled = int(f * width);
+        std::string bar(filled, '=');
+        if (filled < width) bar += '>' + std::string(width - filled - 1, ' ');
+        const double eta = f > 1e-6 ? el * (1 - f) / f : 0.0;
+        std::fprintf(stderr, "\r[%s] %3d%% %s  %.1f s elapsed, ETA %.1f s   ", bar.c_str(), int(f * 100), label.c_str(), el, eta);
+        std::fflush(stderr);
+    }
+
+    bool enabled_;
+    Clock::time_point start_;
+    std::thread thread_;
+    std::mutex m_;
+    std::condition_variable cv_;
+    bool done_ = false;
+    double fraction_ = 0;
+    std::string label_;
+};
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(scene), opt_(options) {
+    spp_ = opt_.spp >= 0 ? opt_.spp : scene.description().spp;
+    if (spp_ < 0) fail("samples per pixel must be >= 0, got ", spp_);
+    if (spp_ == 0 && !(opt_.timeLimit > 0)) fail("--spp 0 needs a --time-limit");
+    if (!opt_.rgbMode && (opt_.spectralSamples < 1 || opt_.spectralSamples > kMaxWavelengths))
+        fail("--spectral-samples must be in [1, ", kMaxWavelengths, "], got ", opt_.spectralSamples);
+    for (int i = 0; i < 3; ++i)
+        if (!(opt_.rgbWavelengths[i] >= kLambdaMin && opt_.rgbWavelengths[i] <= kLambdaMax))
+            fail("RGB channel wavelengths must be in [", kLambdaMin, ", ", kLambdaMax, "] nm");
+    if (opt_.threads < 0) fail("--threads must be >= 0");
+}
+
+std::string Renderer::settingsKey() const {
+    const CameraDescription& c = scene_.description().camera;
+    return strCat("scene=", scene_.description().sourceFile, ";mode=", opt_.rgbMode ? "rgb" : "spectral",
+                  ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
+                  opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
+                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", scene_.description().integrator.type,
+                  ";maxdepth=", scene_.description().integrator.maxDepth);
+}
+
+RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const {
+    const auto start = Clock::now();
+    const Camera camera(scene_.description().camera);
+    if (film.width() != camera.width() || film.height() != camera.height()) fail("film and camera sizes differ");
+    const PixelFilter filter(scene_.description().camera);
+    const std::unique_ptr<Integrator> integrator = Integrator::create(scene_.description().integrator, scene_);
+
+    std::unique_ptr<tbb::global_control> limit;
+    if (opt_.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt_.threads);
+
+    const int w = film.width(), h = film.height();
+    const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile;
+    const int nTiles = tilesX * tilesY;
+
+    struct ThreadState {
+        Arena arena;
+        PathStats stats;
+        uint64_t invalid = 0;
+    };
+    tbb::enumerable_thread_specific<ThreadState> states;
+
+    // Resume: the film already holds complete passes (checkpoints are written between passes).
+    const uint32_t firstSample = film.minSampleCount();
+    if (film.totalSamples() != uint64_t(firstSample) * uint64_t(w) * uint64_t(h))
+        fail("cannot resume: the film holds an incomplete pass");
+
+    ProgressBar progress(opt_.progress, start);
+    std::atomic<int> tilesDone{0};
+    RenderStats rs;
+    auto lastCheckpoint = Clock::now();
+    const bool unlimitedSpp = spp_ == 0;
+    const int target = unlimitedSpp ? std::numeric_limits<int>::max() : spp_;
+    double passSeconds = 0;
+
+    auto stopRequested = [&] {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return true;
+        return opt_.timeLimit > 0 && secondsSince(start) >= opt_.timeLimit;
+    };
+
+    // With checkpoints enabled, keep the last complete pass so that an interrupted render can
+    // still be resumed exactly.
+    const bool checkpoints = !opt_.checkpointPath.empty();
+    std::optional<Film> lastComplete;
+    if (checkpoints) lastComplete = film;
+
+    for (int s = int(firstSample); s < target; ++s) {
+        // Do not start a pass that cannot finish within the time limit.
+        if (opt_.timeLimit > 0 && s > int(firstSample) && secondsSince(start) + passSeconds > opt_.timeLimit) {
+            rs.timeLimited = true;
+            break;
+        }
+        if (stopRequested()) break;
+        const auto passStart = Clock::now();
+        tilesDone = 0;
+        tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int>& range) {
+            ThreadState& ts = states.local();
+            for (int tile = range.begin(); tile != range.end(); ++tile) {
+                if (stopRequested()) return;
+                const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+                for (int y = y0; y < std::min(y0 + kTile, h); ++y)
+                    for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
+                        const uint64_t pixelIndex = uint64_t(y) * w + x;
+                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(s));
+                        SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
+                                                : opt_.uniformWavelengths
+                                                    ? SampledWavelengths::sampleUniform(sampler.get1D(), opt_.spectralSamples)
+                                                    : SampledWavelengths::sampleVisible(sampler.get1D(), opt_.spectralSamples);
+                        const vec2 offset = filter.sample(sampler.get2D());
+                        const Ray ray = camera.generateRay(vec2(x + 0.5f, y + 0.5f) + offset);
+                        ts.arena.reset();
+                        SampledSpectrum L = integrator->Li(ray, wl, sampler, ts.arena, ts.stats);
+                        vec3 value;
+                        if (opt_.rgbMode)
+                            value = vec3(L[0], L[1], L[2]);
+                        else
+                            value = toXYZ(L, wl);
+                        if (!isFinite(value) || L.hasNegative()) {
+                            ++ts.invalid;
+                            value = vec3(0.0f);
+                        }
+                        film.addSample(x, y, value);
+                    }
+                const int done = ++tilesDone;
+                if (opt_.progress) {
+                    const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit
+                                                     : (double(s - firstSample) + double(done) / nTiles) / double(target - firstSample);
+                    progress.update(frac, strCat(s + 1, "/", unlimitedSpp ? std::string("?") : std::to_string(target), " spp"));
+                }
+            }
+        });
+        passSeconds = std::chrono::duration<double>(Clock::now() - passStart).count();
+        if (tilesDone.load() < nTiles) break;  // stopped mid-pass
+        if (checkpoints) {
+            lastComplete = film;
+            if (opt_.checkpointEvery > 0 && secondsSince(lastCheckpoint) >= opt_.checkpointEvery) {
+                film.save(opt_.checkpointPath, settingsKey());
+                lastCheckpoint = Clock::now();
+            }
+        }
+    }
+    progress.finish();
+    if (checkpoints) lastComplete->save(opt_.checkpointPath, settingsKey());
+
+    for (const ThreadState& ts : states) {
+        rs.rays += ts.stats.rays;
+        rs.paths += ts.stats.paths;
+        rs.invalidSamples += ts.invalid;
+    }
+    rs.seconds = secondsSince(start);
+    rs.sppMin = film.minSampleCount();
+    rs.sppMax = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) rs.sppMax = std::max(rs.sppMax, film.sampleCount(x, y));
+    rs.interrupted = !unlimitedSpp && rs.sppMin < uint32_t(target) && !rs.timeLimited;
+    if (opt_.timeLimit > 0 && secondsSince(start) >= opt_.timeLimit) rs.timeLimited = true;
+    if (rs.timeLimited && (!cancel || !cancel->load())) rs.interrupted = false;
+    return rs;
+}
+
+}  // namespace iris

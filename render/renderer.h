@@ -1,0 +1,59 @@
+// The render loop: progressive passes of one sample per pixel over 16×16 tiles in parallel (TBB).
+// Each sample's random stream depends only on (seed, pixel, sample index) and every pixel is
+// accumulated by one thread in sample order, so images are bit-identical for any thread count,
+// and a resumed render equals an uninterrupted one. Cancellation (Ctrl-C) and the time limit stop
+// between tiles; whatever was rendered is kept.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "render/film.h"
+#include "render/scene.h"
+
+namespace iris {
+
+struct RenderOptions {
+    int spp = -1;                  // samples per pixel (-1: the scene's)
+    double timeLimit = 0;          // seconds (0 = none); with spp = 0 render until the time is up
+    uint64_t seed = 0;
+    int threads = 0;               // 0 = all cores
+    bool rgbMode = false;          // RGB mode: 3 fixed wavelengths, values are linear Rec.709
+    int spectralSamples = 4;       // N wavelengths per path in spectral mode
+    vec3 rgbWavelengths{645.0f, 525.0f, 445.0f};
+    bool uniformWavelengths = false;  // ablation: uniform instead of visible-importance wavelength pdf
+    bool progress = false;         // progress bar with ETA on stderr
+    std::string checkpointPath;    // "" = no checkpoints
+    double checkpointEvery = 0;    // seconds between checkpoints (0 = only at the end/interrupt)
+    bool resume = false;           // continue from checkpointPath
+};
+
+struct RenderStats {
+    double seconds = 0;
+    uint64_t rays = 0;
+    uint64_t paths = 0;
+    uint64_t invalidSamples = 0;   // NaN/Inf/negative estimates replaced by zero
+    uint32_t sppMin = 0, sppMax = 0;
+    bool interrupted = false;      // stopped by cancellation before reaching spp
+    bool timeLimited = false;
+};
+
+class Renderer {
+public:
+    Renderer(const Scene& scene, const RenderOptions& options);
+    /// Render into `film`; `cancel` may be set asynchronously (signal handler) to stop early.
+    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr) const;
+    /// String identifying everything that determines the image (checkpoint compatibility).
+    std::string settingsKey() const;
+    int targetSpp() const { return spp_; }
+
+private:
+    const Scene& scene_;
+    RenderOptions opt_;
+    int spp_;
+};
+
+/// Convert a film to the image stored on disk: XYZ (spectral) or linear Rec.709 (RGB mode) in the
+/// film's values; the caller converts colour spaces through OpenColorIO.
+}  // namespace iris

@@ -1,0 +1,210 @@
+#include "render/scene.h"
+
+#include <embree3/rtcore.h>
+
+#include "core/error.h"
+#include "render/lights/area_light.h"
+#include "core/properties.h"
+#include "core/registry.h"
+#include "materials/material.h"
+
+namespace iris {
+
+struct Scene::ShapeData {
+    const ShapeDescription* desc = nullptr;
+    const Material* material = nullptr;
+    const Light* areaLight = nullptr;
+};
+
+namespace {
+void embreeError(void*, RTCError code, const char* str) {
+    // Errors during building are checked through rtcGetDeviceError; this only keeps Embree quiet.
+    (void)code;
+    (void)str;
+}
+
+void checkDevice(RTCDevice device, const char* what) {
+    const RTCError err = rtcGetDeviceError(device);
+    if (err != RTC_ERROR_NONE) fail("Embree error ", int(err), " while ", what);
+}
+}  // namespace
+
+Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
+    RTCDevice device = rtcNewDevice("verbose=0");
+    if (!device) fail("cannot create the Embree device (error ", int(rtcGetDeviceError(nullptr)), ")");
+    rtcSetDeviceErrorFunction(device, embreeError, nullptr);
+    device_ = device;
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    scene_ = scene;
+
+    {
+        Properties p("bsdf", "diffuse", SourceLocation{"<default material>", 0});
+        defaultMaterial_ = MaterialRegistry::instance().create(p);
+    }
+
+    vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    shapes_.resize(desc_.shapes.size());
+    for (size_t i = 0; i < desc_.shapes.size(); ++i) {
+        const ShapeDescription& s = desc_.shapes[i];
+        ShapeData& sd = shapes_[i];
+        sd.desc = &s;
+        sd.material = s.material ? s.material.get() : defaultMaterial_.get();
+        RTCGeometry geom;
+        if (s.type == ShapeDescription::Type::Mesh) {
+            if (!s.mesh) fail("shape '", s.name, "' has no mesh");
+            const TriangleMesh& m = *s.mesh;
+            m.validate();
+            if (m.triangleCount() == 0) continue;
+            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                                       sizeof(vec3), m.positions.size());
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                                       3 * sizeof(uint32_t), m.triangleCount());
+            triangles_ += m.triangleCount();
+            for (const vec3& p : m.positions) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), s.emission));
+        } else {
+            if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
+            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            float* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            v[0] = s.center.x;
+            v[1] = s.center.y;
+            v[2] = s.center.z;
+            v[3] = s.radius;
+            lo = glm::min(lo, s.center - vec3(s.radius));
+            hi = glm::max(hi, s.center + vec3(s.radius));
+            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, s.emission));
+        }
+        if (s.emission) sd.areaLight = lights_.back().get();
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(scene, geom, unsigned(i));
+        rtcReleaseGeometry(geom);
+        checkDevice(device, "building the scene geometry");
+    }
+    rtcCommitScene(scene);
+    checkDevice(device, "building the acceleration structure");
+
+    if (lo.x <= hi.x) {
+        bounds_.center = 0.5f * (lo + hi);
+        bounds_.radius = std::max(1e-3f, 0.5f * glm::length(hi - lo));
+    }
+    for (const LightPtr& l : desc_.lights) {
+        l->preprocess(bounds_);
+        lights_.push_back(l);
+        if (l->type() == Light::Type::Infinite) infinite_.push_back(l.get());
+    }
+}
+
+Scene::~Scene() {
+    if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
+    if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+}
+
+std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.o.x;
+    rh.ray.org_y = ray.o.y;
+    rh.ray.org_z = ray.o.z;
+    rh.ray.dir_x = ray.d.x;
+    rh.ray.dir_y = ray.d.y;
+    rh.ray.dir_z = ray.d.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = ray.tMax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.0f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+    const ShapeData& sd = shapes_[rh.hit.geomID];
+    const ShapeDescription& s = *sd.desc;
+    SurfaceInteraction si;
+    si.t = rh.ray.tfar;
+    si.p = ray.at(si.t);
+    si.wo = -glm::normalize(ray.d);
+    si.shapeIndex = int(rh.hit.geomID);
+    si.material = sd.material;
+    si.areaLight = sd.areaLight;
+    if (s.type == ShapeDescription::Type::Mesh) {
+        const TriangleMesh& m = *s.mesh;
+        const uint32_t* idx = &m.indices[3 * rh.hit.primID];
+        const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+        const vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
+        // Barycentric interpolation of the hit point is more accurate than o + t d.
+        si.p = b0 * p0 + b1 * p1 + b2 * p2;
+        si.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+        vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
+        if (!m.uvs.empty()) {
+            uv0 = m.uvs[idx[0]];
+            uv1 = m.uvs[idx[1]];
+            uv2 = m.uvs[idx[2]];
+        }
+        si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+        // dp/du from the uv parameterisation (pbrt-v4 §6.5.3), fallback to an edge.
+        const vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        const vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        si.dpdu = std::abs(det) > 1e-12f ? (duv12.y * dp02 - duv02.y * dp12) / det : (p1 - p0);
+        if (!m.normals.empty() && !s.faceNormals) {
+            vec3 n = b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]];
+            const float len = glm::length(n);
+            si.ns = len > 0 ? n / len : si.ng;
+        } else {
+            si.ns = si.ng;
+        }
+    } else {
+        vec3 n = glm::normalize(si.p - s.center);
+        // Re-project onto the sphere to reduce the hit point's error.
+        si.p = s.center + s.radius * n;
+        if (s.flipNormals) n = -n;
+        si.ng = si.ns = n;
+        const vec3 local = (si.p - s.center) / s.radius;
+        const float phi = std::atan2(local.y, local.x);
+        si.uv = vec2((phi < 0 ? phi + 2 * kPi : phi) * kInv2Pi, safeAcos(local.z) * kInvPi);
+        si.dpdu = vec3(-local.y, local.x, 0.0f);
+        if (glm::dot(si.dpdu, si.dpdu) < 1e-12f) si.dpdu = vec3(1, 0, 0);
+    }
+    return si;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.tnear = 0.0f;
+    r.tfar = ray.tMax;
+    r.mask = 0xFFFFFFFFu;
+    r.flags = 0;
+    r.time = 0.0f;
+    rtcOccluded1(static_cast<RTCScene>(scene_), &ctx, &r);
+    return r.tfar < 0;  // Embree sets tfar = -inf on a hit
+}
+
+bool Scene::visible(const SurfaceInteraction& from, const vec3& pLight, const vec3& nLight) const {
+    const vec3 d = pLight - from.p;
+    const vec3 o = offsetRayOrigin(from.p, from.ng, d);
+    const vec3 target = glm::dot(nLight, nLight) > 0 ? offsetRayOrigin(pLight, nLight, -d) : pLight;
+    const vec3 dd = target - o;
+    return !occluded(Ray(o, dd, 1.0f - 1e-4f));
+}
+
+bool Scene::visibleInfinite(const SurfaceInteraction& from, const vec3& dir) const {
+    return !occluded(from.spawnRay(dir));
+}
+
+}  // namespace iris

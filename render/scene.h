@@ -1,0 +1,51 @@
+// The renderable scene: Embree geometry for ray queries, per-shape shading data, materials and
+// lights, built once from a SceneDescription.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "render/lights/light.h"
+#include "core/ray.h"
+#include "render/scene_description.h"
+
+namespace iris {
+
+class Scene {
+public:
+    explicit Scene(SceneDescription desc);
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    /// Closest hit along the ray (direction need not be normalised; t is in units of |d|).
+    std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
+    /// True if anything blocks the segment [tmin, ray.tMax).
+    bool occluded(const Ray& ray) const;
+    /// Shadow test between two surface points (both offset off their surfaces).
+    bool visible(const SurfaceInteraction& from, const vec3& pLight, const vec3& nLight) const;
+    bool visibleInfinite(const SurfaceInteraction& from, const vec3& dir) const;
+
+    const SceneDescription& description() const { return desc_; }
+    const std::vector<LightPtr>& lights() const { return lights_; }
+    const std::vector<const Light*>& infiniteLights() const { return infinite_; }
+    const SceneBounds& bounds() const { return bounds_; }
+    size_t triangleCount() const { return triangles_; }
+    /// The Embree scene (RTCScene), for benchmarks that measure bare traversal.
+    void* embreeScene() const { return scene_; }
+
+private:
+    struct ShapeData;
+    SceneDescription desc_;
+    std::vector<ShapeData> shapes_;
+    std::vector<LightPtr> lights_;          // all lights incl. area lights
+    std::vector<const Light*> infinite_;
+    SceneBounds bounds_;
+    size_t triangles_ = 0;
+    void* device_ = nullptr;  // RTCDevice
+    void* scene_ = nullptr;   // RTCScene
+    MaterialPtr defaultMaterial_;
+};
+
+}  // namespace iris

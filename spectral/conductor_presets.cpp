@@ -1,0 +1,70 @@
+#include "spectral/conductor_presets.h"
+
+#include <map>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/source_tree.h"
+#include "spectral/dispersion.h"
+#include "spectral/spectrum_factory.h"
+#include "spectral/spectrum_params.h"
+
+namespace iris {
+
+const std::vector<std::string>& conductorPresetNames() {
+    // Mitsuba 3 conductor plugin documentation, table "Conductor presets".
+    static const std::vector<std::string> names = {
+        "a-C", "Ag",  "Al", "AlAs", "AlSb",     "Au",  "Be",   "Cr",  "CsI", "Cu",      "Cu2O", "CuO", "d-C",
+        "Hg",  "HgTe", "Ir", "K",    "Li",       "MgO", "Mo",   "Na_palik", "Nb", "Ni_palik", "Rh", "Se",  "SiC",
+        "SnTe", "Ta", "Te", "ThF4", "TiC",      "TiN", "TiO2", "VC",  "V_palik", "VN",  "W",    "none"};
+    return names;
+}
+
+std::string conductorDataDir() { return sourcePath("spectral/data/ior"); }
+
+ConductorSpectra loadConductorPreset(const std::string& name) {
+    if (name == "none") return {};
+    const auto& names = conductorPresetNames();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        fail("unknown conductor '", name, "' (known: ", list, ")");
+    }
+    static std::mutex mutex;
+    static std::map<std::string, ConductorSpectra> cache;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(name);
+    if (it != cache.end()) return it->second;
+    ConductorSpectra s;
+    const std::string base = conductorDataDir() + "/" + name;
+    s.eta = loadSpdFile(base + ".eta.spd", SpectrumKind::Unbounded);
+    s.k = loadSpdFile(base + ".k.spd", SpectrumKind::Unbounded);
+    cache[name] = s;
+    return s;
+}
+
+ConductorSpectra readConductor(const Properties& p) {
+    ConductorSpectra s;
+    const bool hasEta = p.has("eta"), hasK = p.has("k");
+    if (hasEta || hasK) {
+        if (p.has("material")) failAt(p.locationOf("material"), "give either 'material' or 'eta'/'k', not both");
+        if (!(hasEta && hasK)) failAt(p.location(), p.tag(), " '", p.type(), "': 'eta' and 'k' must be given together");
+        s.eta = getSpectrum(p, "eta", SpectrumKind::Unbounded);
+        s.k = getSpectrum(p, "k", SpectrumKind::Unbounded);
+    } else {
+        const std::string name = p.getString("material", "none");
+        try {
+            const ConductorSpectra preset = loadConductorPreset(name);
+            s.eta = preset.eta;
+            s.k = preset.k;
+        } catch (const Error& e) {
+            failAt(p.locationOf("material"), e.what());
+        }
+    }
+    const IOR ext = readIOR(p, "ext", "1");
+    if (ext.kind() != IOR::Kind::Constant) failAt(p.locationOf("ext_ior"), "ext_ior of a conductor must be a constant");
+    s.extIOR = ext.eval(550.0f);
+    return s;
+}
+
+}  // namespace iris

@@ -1,0 +1,45 @@
+#include "spectral/spectrum_params.h"
+
+#include "spectral/spectrum_factory.h"
+
+namespace iris {
+
+SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc) {
+    try {
+        switch (v.type) {
+            case SpectrumValue::Type::Constant:
+                return std::make_shared<ConstantSpectrum>(v.constant, kind);
+            case SpectrumValue::Type::Pairs:
+                return makePiecewiseLinearSpectrum(v.lambdas, v.values, kind);
+            case SpectrumValue::Type::File:
+                return loadSpdFile(v.path, kind);
+            case SpectrumValue::Type::Blackbody:
+                return makeBlackbodySpectrum(v.temperature, v.scale);
+        }
+    } catch (const Error& e) {
+        // File errors already name their file; add where the scene asked for it.
+        failAt(loc, e.what());
+    }
+    failAt(loc, "invalid spectrum value");
+}
+
+/// A plain number as a spectrum. Emitters multiply it by D65 with Y = 1 (as Mitsuba 3 does), so a
+/// float emitter renders the same white, (v, v, v), in spectral and RGB mode.
+SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind) {
+    if (kind == SpectrumKind::Illuminant) return makeRGBSpectrum(vec3(v), kind);
+    return std::make_shared<ConstantSpectrum>(v, kind);
+}
+
+SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind) {
+    const Properties::Entry& e = p.require(name);
+    if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
+    if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
+    if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
+    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) return spectrumFromValue(*s, kind, e.loc);
+    p.typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
+}
+SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def) {
+    return p.present(name) ? getSpectrum(p, name, kind) : spectrumFromNumber(def, kind);
+}
+
+}  // namespace iris

@@ -1,0 +1,25 @@
+// Spectrum-valued scene parameters: a float, <rgb>, <spectrum> or <blackbody> value of a
+// Properties entry turned into a Spectrum of the kind the plugin asks for (reflectance, unbounded,
+// illuminant; spectral/spectrum.h). The typed getters of core/properties.h stop at raw values;
+// this is the spectral layer's getter.
+#pragma once
+
+#include <string>
+
+#include "core/properties.h"
+#include "spectral/spectrum.h"
+
+namespace iris {
+
+/// Spectrum from a float, rgb, spectrum or blackbody value; a located error when missing or of
+/// another type. A plain number given to an emitter (Illuminant kind) is that multiple of D65 with
+/// Y = 1, as in Mitsuba 3.
+SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind);
+/// As above, `def` (a number, read as above) when absent.
+SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def);
+/// A plain number as a spectrum of the given kind (the rule of getSpectrum for numbers).
+SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind);
+/// Build a spectrum of the given kind from a <spectrum>/<blackbody> value.
+SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
+
+}  // namespace iris
