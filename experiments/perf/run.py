@@ -27,7 +27,7 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(REPO, "experiments", "perf", "scenes")
-MESHES = os.path.join(REPO, "..", "shared", "data", "meshes")
+MESHES = os.path.join(REPO, "scenes", "meshes")
 
 
 # ----------------------------------------------------------------------------- process helpers

@@ -34,7 +34,7 @@ def source_files(root, layers):
     for top in layers:
         base = os.path.join(root, top)
         for dirpath, dirnames, filenames in os.walk(base):
-            dirnames[:] = [d for d in dirnames if d not in ('results', 'corpus', '__pycache__')]
+            dirnames[:] = [d for d in dirnames if d not in ('results', 'corpus', '__pycache__', 'testdata')]
             for name in filenames:
                 if name.endswith(SOURCE_EXT):
                     yield os.path.relpath(os.path.join(dirpath, name), root)
