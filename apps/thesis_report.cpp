@@ -2,7 +2,9 @@
 //   1. rough plastic table build time (fresh build, TBB, no cache) per distribution;
 //   2. Catmull-Rom interpolation error of the tables against brute-force integration;
 //   3. directional albedo (white furnace) of the thesis' models for the thesis' parameter sets.
-// Usage: thesis_report [--points N] [--samples N]
+// Usage: thesis_report [--table tables|albedo|all] [--points N] [--samples N]
+// (tables: 1 and 2, with timings; albedo: 3, repeatable bit for bit). docs/thesis_models.md gets
+// them through tests/architecture/doc_tables.py.
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -15,7 +17,9 @@
 #include "core/error.h"
 #include "core/registry.h"
 #include "core/rng.h"
+#include "materials/albedo.h"
 #include "materials/material.h"
+#include "materials/thesis_channels.h"
 #include "materials/rough_plastic_tables.h"
 
 using namespace iris;
@@ -33,39 +37,7 @@ std::shared_ptr<Material> makeMaterial(const Config& c) {
     return MaterialRegistry::instance().create(p);
 }
 
-/// Directional albedo per channel: mean of f·cosθi/pdf over sample() (RGB mode, 645/525/445 nm).
-void albedo(const Material& m, float cosO, int n, double mean[3], double se[3]) {
-    Arena arena;
-    SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
-    const BSDF* bsdf = m.getBSDF(ShadingPoint{}, wl, arena);
-    const vec3 wo(std::sqrt(1 - cosO * cosO), 0, cosO);
-    double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
-    Sampler rng(17);
-    for (int i = 0; i < n; ++i) {
-        const float uc = rng.get1D();
-        const auto smp = bsdf->sample(wo, uc, rng.get2D(), TransportMode::Radiance);
-        if (!smp) continue;
-        const SampledSpectrum w = smp->weight();
-        for (int c = 0; c < 3; ++c) {
-            s[c] += w[c];
-            s2[c] += double(w[c]) * w[c];
-        }
-    }
-    for (int c = 0; c < 3; ++c) {
-        mean[c] = s[c] / n;
-        se[c] = std::sqrt(std::max(0.0, s2[c] / n - mean[c] * mean[c]) / n);
-    }
-}
-
-}  // namespace
-
-int main(int argc, char** argv) try {
-    int points = 5000, samples = 200000;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--samples")) samples = std::atoi(argv[i + 1]);
-        else fail("unknown option ", argv[i]);
-    }
+void printTables(int points) {
     const RoughTableResolution res;
     std::printf("### Rough plastic tables (measured by `thesis_report`)\n\n");
     std::printf("Resolution nη × nα × nμ = %d × %d × %d (+ %d × %d for Td), %d-point Gauss-Legendre per "
@@ -95,7 +67,9 @@ int main(int argc, char** argv) try {
         std::printf("| %s | %.2f / %.2f | %.1e | %.1e | %.1e | %.1e |\n",
                     type == MicrofacetType::Beckmann ? "beckmann" : "ggx", sec, cpu, maxAll, maxAway, std::sqrt(sq / points), maxTd);
     }
+}
 
+void printAlbedo(int samples) {
     const PropertyValue tilt14 = VectorValue{vec3(0.24192f, 0, 0.97030f)};
     const PropertyValue tilt10 = VectorValue{vec3(0.1736f, 0, 0.9848f)};
     const PropertyValue eta31 = RGBValue{vec3(1.5f, 1.6f, 1.8f)}, eta42 = RGBValue{vec3(1.8f, 1.7f, 1.6f)};
@@ -117,7 +91,7 @@ int main(int argc, char** argv) try {
          {{"alpha", 0.124f}, {"diffuse_reflectance", 1.0f}, {"nonlinear", true}}},
     };
     const float cosines[] = {1.0f, 0.8f, 0.6f, 0.4f, 0.2f, 0.1f};
-    std::printf("\n### Directional albedo (RGB mode, %d samples per entry; R/G/B, standard error ≤ %s)\n\n", samples,
+    std::printf("### Directional albedo (RGB mode, %d samples per entry; R/G/B, standard error ≤ %s)\n\n", samples,
                 "see last column");
     std::printf("| material | cosθo = 1 | 0.8 | 0.6 | 0.4 | 0.2 | 0.1 | max albedo | max std. error |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|\n");
@@ -126,16 +100,36 @@ int main(int argc, char** argv) try {
         std::printf("| %s |", c.name.c_str());
         double maxA = 0, maxSe = 0;
         for (float co : cosines) {
-            double mean[3], se[3];
-            albedo(*m, co, samples, mean, se);
-            std::printf(" %.3f / %.3f / %.3f |", mean[0], mean[1], mean[2]);
+            Arena arena;
+            SampledWavelengths wl = SampledWavelengths::rgb(thesisDefaultWavelengths());
+            const BSDF* bsdf = m->getBSDF(ShadingPoint{}, wl, arena);
+            const vec3 wo(std::sqrt(1 - co * co), 0, co);
+            const std::vector<AlbedoEstimate> a = directionalAlbedo(*bsdf, wo, samples, 17);
+            std::printf(" %.3f / %.3f / %.3f |", a[0].mean, a[1].mean, a[2].mean);
             for (int k = 0; k < 3; ++k) {
-                maxA = std::max(maxA, mean[k]);
-                maxSe = std::max(maxSe, se[k]);
+                maxA = std::max(maxA, a[k].mean);
+                maxSe = std::max(maxSe, a[k].stderr_);
             }
         }
         std::printf(" %.3f | %.1e |\n", maxA, maxSe);
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+    int points = 5000, samples = 200000;
+    std::string table = "all";
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--samples")) samples = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--table")) table = argv[i + 1];
+        else fail("unknown option ", argv[i]);
+    }
+    if (table != "all" && table != "tables" && table != "albedo") fail("--table must be tables, albedo or all");
+    if (table != "albedo") printTables(points);
+    if (table == "all") std::printf("\n");
+    if (table != "tables") printAlbedo(samples);
     return 0;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "thesis_report: %s\n", e.what());

@@ -296,36 +296,32 @@ TEST(PrincipledFurnace, MetalIsEnergyConserving) {
         }
 }
 
-// Measured directional albedos (channel 0, base colour 1 unless noted) for the docs table.
-TEST(PrincipledFurnace, Table) {
+// Directional albedos (red channel, base colour 1 unless noted; the table of
+// docs/materials_principled_cloth.md is printed by `material_albedo --table principled`): every
+// configuration stays within [0.2, 1.6] at every angle — the Disney model is not energy
+// conserving (the diffuse and sheen terms are added to the specular lobe without scaling), and
+// 1.6 bounds that gain; the metallic rows, a single GGX lobe, stay ≤ 1 (to 4 standard errors).
+TEST(PrincipledFurnace, AlbedosWithinTheirBounds) {
     const float coss[] = {1.0f, 0.7f, 0.4f, 0.2f, 0.05f};
-    std::printf("\n| configuration | cosθo=1.0 | 0.7 | 0.4 | 0.2 | 0.05 |\n|---|---|---|---|---|---|\n");
-    auto row = [&](const char* name, std::initializer_list<test::Param> params) {
+    auto check = [&](const char* name, std::initializer_list<test::Param> params, double hi) {
         auto inst = makeBSDF("principled", params);
-        std::printf("| %s |", name);
         for (float c : coss) {
             const auto a = test::albedo(*inst.bsdf, test::dirFromCos(c, 0.2f), 200000)[0];
-            EXPECT_TRUE(std::isfinite(a.mean));
-            std::printf(" %.3f ±%.3f |", a.mean, a.stderr_);
+            EXPECT_GE(a.mean, 0.2) << name << " cos " << c;
+            EXPECT_LE(a.mean, hi + 4 * a.stderr_) << name << " cos " << c;
         }
-        std::printf("\n");
     };
-    row("metallic 1, roughness 0.1", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.1f}});
-    row("metallic 1, roughness 0.3", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.3f}});
-    row("metallic 1, roughness 0.6", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.6f}});
-    row("metallic 1, roughness 1.0", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 1.0f}});
-    row("metallic 1, roughness 0.6, anisotropic 0.9",
-        {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.6f}, {"anisotropic", 0.9f}});
-    row("dielectric, roughness 0.5 (defaults)", {{"base_color", 1.0f}});
-    row("dielectric, roughness 1.0", {{"base_color", 1.0f}, {"roughness", 1.0f}});
-    row("dielectric, roughness 0.2", {{"base_color", 1.0f}, {"roughness", 0.2f}});
-    row("specular 0 (Burley diffuse + Schlick F_H residual), roughness 1", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 1.0f}});
-    row("specular 0 (Burley diffuse + Schlick F_H residual), roughness 0", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 0.0f}});
-    row("subsurface 1, roughness 0.5", {{"base_color", 1.0f}, {"subsurface", 1.0f}});
-    row("sheen 1, roughness 0.5", {{"base_color", 1.0f}, {"sheen", 1.0f}});
-    row("clearcoat 1, gloss 1", {{"base_color", 1.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}});
-    row("everything 1 (spec 1, sheen 1, clearcoat 1, subsurface 1)",
-        {{"base_color", 1.0f}, {"specular", 1.0f}, {"sheen", 1.0f}, {"clearcoat", 1.0f}, {"subsurface", 1.0f}});
+    for (float r : {0.1f, 0.3f, 0.6f, 1.0f}) check("metallic", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", r}}, 1.0);
+    check("metallic, anisotropic 0.9", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.6f}, {"anisotropic", 0.9f}}, 1.0);
+    check("dielectric defaults", {{"base_color", 1.0f}}, 1.6);
+    check("dielectric, roughness 1", {{"base_color", 1.0f}, {"roughness", 1.0f}}, 1.6);
+    check("dielectric, roughness 0.2", {{"base_color", 1.0f}, {"roughness", 0.2f}}, 1.6);
+    check("specular 0, roughness 1", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 1.0f}}, 1.6);
+    check("specular 0, roughness 0", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 0.0f}}, 1.6);
+    check("subsurface 1", {{"base_color", 1.0f}, {"subsurface", 1.0f}}, 1.6);
+    check("sheen 1", {{"base_color", 1.0f}, {"sheen", 1.0f}}, 1.6);
+    check("clearcoat 1, gloss 1", {{"base_color", 1.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}}, 1.6);
+    check("everything 1", {{"base_color", 1.0f}, {"specular", 1.0f}, {"sheen", 1.0f}, {"clearcoat", 1.0f}, {"subsurface", 1.0f}}, 1.6);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Shared BSDF test harness; see bsdf_test_util.h for what each check does and why.
 #include "tests/support/bsdf_test_util.h"
 
+#include "materials/albedo.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -238,13 +240,7 @@ ConsistencyResult checkConsistency(const BSDF& bsdf, const vec3& wo, int samples
 }
 
 namespace {
-Estimate finish(double sum, double sum2, int n) {
-    Estimate e;
-    e.mean = sum / n;
-    const double var = std::max(0.0, sum2 / n - e.mean * e.mean);
-    e.stderr_ = std::sqrt(var / std::max(1, n - 1));
-    return e;
-}
+Estimate finish(double sum, double sum2, int n) { return albedoFromSums(sum, sum2, n); }
 }  // namespace
 
 Estimate pdfIntegral(const BSDF& bsdf, const vec3& wo, int samples, uint64_t seed, TransportMode mode) {
@@ -260,26 +256,7 @@ Estimate pdfIntegral(const BSDF& bsdf, const vec3& wo, int samples, uint64_t see
 }
 
 std::vector<Estimate> albedo(const BSDF& bsdf, const vec3& wo, int samples, uint64_t seed, TransportMode mode) {
-    Sampler rng(seed, 0x5eed5eedull, 0);
-    std::vector<double> s, s2;
-    for (int i = 0; i < samples; ++i) {
-        const float uc = rng.get1D();
-        const vec2 u = rng.get2D();
-        const auto smp = bsdf.sample(wo, uc, u, mode);
-        if (!smp) continue;
-        const SampledSpectrum wgt = smp->weight();
-        if (s.empty()) {
-            s.assign(wgt.size(), 0.0);
-            s2.assign(wgt.size(), 0.0);
-        }
-        for (int c = 0; c < wgt.size(); ++c) {
-            s[c] += wgt[c];
-            s2[c] += double(wgt[c]) * wgt[c];
-        }
-    }
-    std::vector<Estimate> out;
-    for (size_t c = 0; c < s.size(); ++c) out.push_back(finish(s[c], s2[c], samples));
-    return out;
+    return directionalAlbedo(bsdf, wo, samples, seed, mode);
 }
 
 std::pair<Estimate, Estimate> albedoSplit(const BSDF& bsdf, const vec3& wo, int c, int samples, uint64_t seed,

@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "materials/albedo.h"
 #include "core/arena.h"
 #include "core/properties.h"
 #include "materials/bsdf.h"
@@ -88,9 +89,7 @@ struct ConsistencyResult {
 ConsistencyResult checkConsistency(const BSDF& bsdf, const vec3& wo, int samples = 20000, uint64_t seed = 2,
                                    TransportMode mode = TransportMode::Radiance);
 
-struct Estimate {
-    double mean = 0, stderr_ = 0;
-};
+using Estimate = AlbedoEstimate;  // a Monte Carlo mean and its standard error (materials/albedo.h)
 Estimate pdfIntegral(const BSDF& bsdf, const vec3& wo, int samples = 400000, uint64_t seed = 3,
                      TransportMode mode = TransportMode::Radiance);
 
