@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/quadrature.h"
 #include "materials/textures/texture_params.h"
 #include "spectral/belcour_barla.h"
 #include "spectral/conductor_presets.h"
@@ -420,37 +421,8 @@ void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectru
 
 namespace {
 
-/// Gauss–Legendre nodes and weights on [0, 1] (Newton iteration on P_n; Press et al., Numerical
-/// Recipes 3rd ed. §4.6.1).
-struct GaussLegendre {
-    static constexpr int kN = 16;
-    double x[kN], w[kN];
-    GaussLegendre() {
-        const int n = kN;
-        for (int i = 0; i < n; ++i) {
-            double z = std::cos(3.141592653589793 * (i + 0.75) / (n + 0.5)), pp = 0;
-            for (int it = 0; it < 100; ++it) {
-                double p1 = 1, p2 = 0;
-                for (int j = 0; j < n; ++j) {
-                    const double p3 = p2;
-                    p2 = p1;
-                    p1 = ((2 * j + 1) * z * p2 - j * p3) / (j + 1);
-                }
-                pp = n * (z * p1 - p2) / (z * z - 1);
-                const double dz = p1 / pp;
-                z -= dz;
-                if (std::abs(dz) < 1e-15) break;
-            }
-            x[i] = 0.5 * (1 - z);
-            w[i] = 1.0 / ((1 - z * z) * pp * pp);  // 2/((1−z²)P'²) on [−1,1], halved for [0,1]
-        }
-    }
-};
-
-const GaussLegendre& gaussLegendre() {
-    static const GaussLegendre g;
-    return g;
-}
+/// The film quadrature: 16 Gauss–Legendre nodes on each side of the critical cosine.
+constexpr int kRintNodes = 16;
 
 }  // namespace
 
@@ -487,7 +459,7 @@ void FilmCoatingSpec::precomputeInternalReflectance(const vec3& rgbLambdas) {
 }
 
 double FilmCoating::internalHemisphericalReflectanceDirect(int k) const {
-    const GaussLegendre& g = gaussLegendre();
+    const GaussLegendre& g = gaussLegendre(kRintNodes);
     const double nSub = substrate_[k].real();
     // Below μc the exterior wave is evanescent: R = 1 for lossless layers, < 1 with absorption or
     // tunnelling through thin layers, so that part is integrated too (not set to 1).
@@ -496,7 +468,7 @@ double FilmCoating::internalHemisphericalReflectanceDirect(int k) const {
     // Above μc, R(μ) has a square-root edge at μc: substitute μ = μc + (1 − μc) t², dμ = 2(1 − μc) t dt,
     // which makes the integrand smooth in t. Below μc, plain Gauss–Legendre in μ.
     double acc = 0;
-    for (int i = 0; i < GaussLegendre::kN; ++i) {
+    for (int i = 0; i < kRintNodes; ++i) {
         if (muC > 0) {
             const double mu = muC * g.x[i];
             acc += muC * g.w[i] * stackRTFromBelow(k, mu).R() * mu;

@@ -68,18 +68,13 @@ public:
                 s.flags = kBSDFReflection | kBSDFSpecular;
                 return s;
             }
-            const vec3 m = dist_.sampleNormal(wo, u);
-            const float wom = glm::dot(wo, m);
-            if (wom <= 0) return std::nullopt;
-            s.wi = reflect(wo, m);
-            if (s.wi.z <= 0) return std::nullopt;
+            const auto r = sampleMicrofacetReflection(dist_, wo, u);
+            if (!r) return std::nullopt;
+            s.wi = r->wi;
             s.flags = kBSDFReflection | kBSDFGlossy;
-            // Specular f and pdf at the sampled normal m (recomputing it from wo + wi cancels in
-            // float near grazing angles).
-            s.pdf = ps * dist_.pdf(wo, m) / (4.0f * wom) + (1.0f - ps) * cosineHemispherePdf(s.wi.z);
+            s.pdf = ps * r->pdfM / (4.0f * r->wom) + (1.0f - ps) * cosineHemispherePdf(s.wi.z);
             if (!(s.pdf > 0)) return std::nullopt;
-            const float DG = dist_.D(m) * dist_.G(s.wi, wo, m);
-            s.f = diffuse(wo, s.wi) + coating_.reflectance(wom) * (DG / (4.0f * wo.z * s.wi.z));
+            s.f = diffuse(wo, s.wi) + coating_.reflectance(r->wom) * (r->DG / (4.0f * wo.z * s.wi.z));
             return s;
         }
         s.wi = sampleCosineHemisphere(u);

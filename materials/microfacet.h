@@ -17,6 +17,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/frame.h"
@@ -122,6 +123,31 @@ double erfInv(double x);
 ///   sample_visible    visible-normal sampling (default true)
 ///   masking       "separable" (default) | "height_correlated" | "vcavity"   (iris extension)
 ///   beckmann_rational_g1  use thesis 000 eqs. 2.13–2.14 for Beckmann's G1 (default false; iris extension)
+/// A reflection sampled through the distribution: the microfacet normal m, ωo·m > 0, the mirrored
+/// direction ωi (upper hemisphere), the density pdfM of m and D(m) G(ωi, ωo, m). Everything is at
+/// the sampled m — recomputing it as normalize(ωo + ωi) cancels in float near grazing angles and
+/// would pair f and pdf of different normals.
+struct MicrofacetReflection {
+    vec3 m, wi;
+    float wom, pdfM, DG;
+    /// Density of ωi: the half-vector → ωi Jacobian 1/(4 ωo·m) (Walter et al. 2007, eq. 14).
+    float pdf() const { return pdfM / (4.0f * wom); }
+};
+/// Sample m from `d` (u in [0,1)²) and reflect ωo about it; nullopt when m faces away from ωo or
+/// ωi falls below the surface.
+inline std::optional<MicrofacetReflection> sampleMicrofacetReflection(const MicrofacetDistribution& d, const vec3& wo,
+                                                                      const vec2& u) {
+    MicrofacetReflection r;
+    r.m = d.sampleNormal(wo, u);
+    r.wom = glm::dot(wo, r.m);
+    if (r.wom <= 0) return std::nullopt;
+    r.wi = reflect(wo, r.m);
+    if (r.wi.z <= 0) return std::nullopt;
+    r.pdfM = d.pdf(wo, r.m);
+    r.DG = d.D(r.m) * d.G(r.wi, wo, r.m);
+    return r;
+}
+
 struct MicrofacetParams {
     MicrofacetType type = MicrofacetType::Beckmann;
     FloatTexturePtr alphaU, alphaV;

@@ -20,6 +20,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/quadrature.h"
 #include "materials/fresnel.h"
 
 namespace iris {
@@ -27,42 +28,6 @@ namespace {
 
 constexpr uint32_t kFormatVersion = 2;  // 2: η = 1 node at 1 + 1e-4
 constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'R', 'P', 'T', 'B'};
-
-/// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n, Press et al.,
-/// Numerical Recipes 3rd ed. §4.6.1).
-struct GaussLegendre {
-    std::vector<double> x, w;
-    explicit GaussLegendre(int n) : x(n), w(n) {
-        for (int i = 0; i < (n + 1) / 2; ++i) {
-            double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), pp = 0;
-            for (int it = 0; it < 100; ++it) {
-                double p1 = 1, p2 = 0;
-                for (int j = 0; j < n; ++j) {
-                    const double p3 = p2;
-                    p2 = p1;
-                    p1 = ((2.0 * j + 1.0) * z * p2 - j * p3) / (j + 1);
-                }
-                pp = n * (z * p1 - p2) / (z * z - 1.0);
-                const double z1 = z;
-                z = z1 - p1 / pp;
-                if (std::abs(z - z1) < 1e-15) break;
-            }
-            // Map [-1, 1] → [0, 1].
-            x[i] = 0.5 * (1.0 - z);
-            x[n - 1 - i] = 0.5 * (1.0 + z);
-            w[i] = w[n - 1 - i] = 1.0 / ((1.0 - z * z) * pp * pp);
-        }
-    }
-};
-
-const GaussLegendre& gaussLegendre(int n) {
-    static std::mutex m;
-    static std::array<std::unique_ptr<GaussLegendre>, 257> cache;
-    if (n < 1 || n > 256) fail("Gauss-Legendre order must be in [1, 256], got ", n);
-    std::lock_guard<std::mutex> lock(m);
-    if (!cache[n]) cache[n] = std::make_unique<GaussLegendre>(n);
-    return *cache[n];
-}
 
 /// tan²θh of the microfacet normal at CDF value u of D(m) cosθm (thesis eq. 2.19 for Beckmann;
 /// Walter et al. 2007 eq. 35 for GGX) and the inverse.

@@ -52,17 +52,12 @@ public:
             s.f = coating_.reflectance(wo.z) / wo.z;
             return s;
         }
-        const vec3 m = dist_.sampleNormal(wo, u);
-        const float wom = glm::dot(wo, m);
-        if (wom <= 0) return std::nullopt;
-        s.wi = reflect(wo, m);
-        if (s.wi.z <= 0) return std::nullopt;
-        s.pdf = dist_.pdf(wo, m) / (4.0f * wom);  // half-vector → wi Jacobian (Walter 2007 eq. 14)
+        const auto r = sampleMicrofacetReflection(dist_, wo, u);
+        if (!r) return std::nullopt;
+        s.wi = r->wi;
+        s.pdf = r->pdf();
         if (!(s.pdf > 0)) return std::nullopt;
-        // f and pdf both at the sampled normal m: recomputing it as normalize(wo + wi) cancels in
-        // float near grazing angles and would pair f and pdf of different normals.
-        const float DG = dist_.D(m) * dist_.G(s.wi, wo, m);
-        s.f = coating_.reflectance(wom) * (DG / (4.0f * wo.z * s.wi.z));
+        s.f = coating_.reflectance(r->wom) * (r->DG / (4.0f * wo.z * s.wi.z));
         return s;
     }
 
