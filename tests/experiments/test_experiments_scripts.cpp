@@ -97,12 +97,23 @@ TEST_F(AppTest, CompareReportsMetricsAsTextAndJson) {
     EXPECT_NEAR(jsonField(json.out, "relmse"), 0.1, 1e-6) << json.out;  // 0.01 / (0.09 + 0.01)
     EXPECT_NEAR(jsonField(json.out, "mse"), 0.01, 1e-7) << json.out;
     EXPECT_NEAR(jsonField(json.out, "psnr"), 20.0, 1e-4) << json.out;
+    EXPECT_NEAR(jsonField(json.out, "smape"), 0.1 / 0.71, 1e-6) << json.out;  // |0.1| / (0.4 + 0.3 + 0.01)
+    // Uniform greys: FLIP is the colour pipeline's value (tests/experiments/test_flip.cpp), > 0 here.
+    EXPECT_GT(jsonField(json.out, "flip_ldr_mean"), 0.05) << json.out;
+    EXPECT_LT(jsonField(json.out, "flip_ldr_mean"), 0.95) << json.out;
+    EXPECT_GT(jsonField(json.out, "flip_hdr_mean"), 0.0) << json.out;
     const Image diff = readImage(file("diff.exr"));
-    ASSERT_EQ(diff.channels, 4);
+    ASSERT_EQ(diff.channels, 5);
     EXPECT_NEAR(diff.at(2, 1, diff.channelIndex("R")), 0.1f, 1e-6f);
     EXPECT_GT(diff.at(2, 1, diff.channelIndex("dE00")), 0.5f);
-    const Output same = runCapture(absApp("compare") + " " + file("ref.exr") + " " + file("ref.exr") + " --json");
+    EXPECT_NEAR(diff.at(2, 1, diff.channelIndex("FLIP")), jsonField(json.out, "flip_hdr_mean"), 1e-5);
+    const Output same = runCapture(absApp("compare") + " " + file("ref.exr") + " " + file("ref.exr") + " --json --per-channel");
     EXPECT_NE(same.out.find("\"psnr\": null"), std::string::npos) << same.out;
+    EXPECT_EQ(jsonField(same.out, "flip_hdr_mean"), 0.0) << same.out;
+    EXPECT_NE(same.out.find("\"per_channel\": [{\"name\": \"R\", \"count\": 32, \"mse\": 0,"), std::string::npos) << same.out;
+    const Output noFlip = runCapture(absApp("compare") + " " + file("test.exr") + " " + file("ref.exr") + " --json --no-flip");
+    EXPECT_NE(noFlip.out.find("\"flip_ldr_mean\": null"), std::string::npos) << noFlip.out;
+    EXPECT_EQ(runCapture(absApp("compare") + " " + file("test.exr") + " " + file("ref.exr") + " --ppd -3").exitCode, 1);
 }
 
 TEST_F(AppTest, CompareErrorsAreOneLineNamingTheFile) {
