@@ -44,6 +44,15 @@ class Analysis:
     conclusions: list                   # sentences computed from the data
     sections: list = field(default_factory=list)   # extra (heading, markdown) sections
     figures: list = field(default_factory=list)    # PNG paths (absolute) to embed in the report
+    # Interactive image comparisons of the HTML report: {"title", "reference": EXR, "tests": [(label, EXR)]}
+    comparisons: list = field(default_factory=list)
+
+    def add_study(self, result) -> None:
+        """Append a convergence study's sections, figures, conclusions and comparison."""
+        self.sections += result.sections
+        self.figures += result.figures
+        self.conclusions += result.conclusions
+        self.comparisons.append(result.comparison)
 
 
 class Experiment:
@@ -155,10 +164,11 @@ def _run(exp: Experiment, args) -> int:
         if not args.spp_scale > 0:
             raise ExperimentError(f"--spp-scale must be positive, got {args.spp_scale}")
         for s in sweeps:
-            if "spp" in s.fixed:
+            # spp 0 (render until --time-limit) stays 0.
+            if s.fixed.get("spp"):
                 s.fixed["spp"] = max(1, round(s.fixed["spp"] * args.spp_scale))
             if "spp" in s.axes:
-                s.axes["spp"] = [max(1, round(v * args.spp_scale)) for v in s.axes["spp"]]
+                s.axes["spp"] = [max(1, round(v * args.spp_scale)) if v else v for v in s.axes["spp"]]
     if args.threads:
         for s in sweeps:
             s.fixed.setdefault("threads", args.threads)
