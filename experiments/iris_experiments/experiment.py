@@ -14,7 +14,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from . import collect, report, runner, scenes, slurm, sweep, tools
+from . import collect, html_report, report, runner, scenes, slurm, sweep, tools
 from .errors import ExperimentError
 
 
@@ -143,6 +143,7 @@ def override_scenes(exp: Experiment, overrides) -> None:
 
 
 def _run(exp: Experiment, args) -> int:
+    prov = report.provenance()   # before anything is written
     bdir = tools.build_dir(args.build_dir)
     out = output_dir(exp, args)
     override_scenes(exp, args.scene)
@@ -168,7 +169,8 @@ def _run(exp: Experiment, args) -> int:
             if s.fixed.get("spp"):
                 s.fixed["spp"] = max(1, round(s.fixed["spp"] * args.spp_scale))
             if "spp" in s.axes:
-                s.axes["spp"] = [max(1, round(v * args.spp_scale)) if v else v for v in s.axes["spp"]]
+                scaled = [max(1, round(v * args.spp_scale)) if v else v for v in s.axes["spp"]]
+                s.axes["spp"] = list(dict.fromkeys(scaled))   # a series 1, 2, 4 halved: 1, 2
     if args.threads:
         for s in sweeps:
             s.fixed.setdefault("threads", args.threads)
@@ -215,12 +217,18 @@ def _run(exp: Experiment, args) -> int:
     table = report.markdown_table(analysis.rows, analysis.columns)
     # The command that renders and reports (a --collect-only run reports renders made by it).
     command = shlex.join(["python3", f"experiments/{exp.name}.py", *[a for a in args.argv if a != "--collect-only"]])
+    machine = report.machine_info(prov)
+    figures = [str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures]
+    sections = [("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections
     rep = report.write_report(
-        out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
-        settings=run_settings, conclusions=analysis.conclusions,
-        sections=[("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections,
-        figures=[str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures],
-        command=command)
+        out / "report.md", title=exp.title, question=exp.question, machine=machine, settings=run_settings,
+        conclusions=analysis.conclusions, sections=sections, figures=figures, command=command)
+    page = html_report.write_html_report(
+        out / "report.html", title=exp.title, question=exp.question, provenance=prov, machine=machine,
+        settings=run_settings, conclusions=analysis.conclusions, sections=sections,
+        figures=[Path(f) if Path(f).is_absolute() else out / f for f in analysis.figures],
+        comparisons=analysis.comparisons, command=command)
+    print(f"{exp.name}: wrote {page}")
     print(f"{exp.name}: wrote {rep}")
     for c in analysis.conclusions:
         print(f"  - {c}")

@@ -298,9 +298,22 @@ class ExperimentEndToEndTest(TempDirTest):
     def test_spp_scale_and_dry_run(self):
         _, stdout = self.run_experiment("channel_count", ["--dry-run", "--spp-scale", "0.5"])
         lines = stdout.strip().splitlines()
-        self.assertEqual(len(lines), 2 + 6 + 1)  # reference seeds, wavelength counts, rgb
-        self.assertTrue(all(" --spp 2 " in l for l in lines[2:]))  # quick spp 4 halved
-        self.assertTrue(all(" --spp 8 " in l for l in lines[:2]))  # reference 16 halved
+        by_sweep = {}
+        for line in lines:
+            by_sweep.setdefault(line.split("/renders/")[1].split("/")[0], []).append(line)
+        self.assertEqual(len(by_sweep["reference"]), 2)
+        self.assertEqual(len(by_sweep["spectral"]) + len(by_sweep["rgb"]), 6 + 1)  # wavelength counts, rgb
+        self.assertTrue(all(" --spp 2 " in l for l in by_sweep["spectral"] + by_sweep["rgb"]))  # quick spp 4 halved
+        self.assertTrue(all(" --spp 8 " in l for l in by_sweep["reference"]))  # reference 16 halved
+        # Convergence: quick levels 1, 2, 4 halved are 1, 1, 2 -> 1, 2 (no duplicate jobs), 2 seeds, the 4
+        # quick configurations (the fake renderer has no --wavelength-sampling: "N=4 independent" is left out).
+        conv = by_sweep["convergence"]
+        self.assertEqual(len(conv), 4 * 2 * 2)
+        self.assertEqual(sorted({l.split(" --spp ")[1].split()[0] for l in conv}), ["1", "2"])
+        self.assertFalse(any("independent" in l for l in lines))
+        equal = by_sweep["convergence_equal_time"]
+        self.assertEqual(len(equal), 4 * 2)
+        self.assertTrue(all(" --spp 0 " in l and " --time-limit 0.2 " in l for l in equal))  # spp 0 is not scaled
         self.assertFalse((self.tmp / "out").exists())
 
     def test_missing_scene_fails_clearly(self):

@@ -153,14 +153,38 @@ TEST_F(AppTest, MergeWeightsBySppAndRefusesMismatches) {
     EXPECT_NE(size.err.find(file("small.exr")), std::string::npos) << size.err;
 }
 
+/// Why the Python experiment tests cannot run here ("" when they can).
+static std::string missingPythonDeps(const std::string& python) {
+    if (runCapture(python + " -c 'import numpy, matplotlib'").exitCode != 0)
+        return python + " lacks numpy/matplotlib (apt-get install python3-numpy python3-matplotlib)";
+    return {};
+}
+
 TEST(ExperimentScripts, PythonFrameworkUnitTests) {
     // Debian's python3 (with numpy and matplotlib); a pyenv python3 earlier in PATH may lack them.
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    if (runCapture(python + " -c 'import numpy, matplotlib'").exitCode != 0)
-        GTEST_SKIP() << python << " lacks numpy/matplotlib (apt-get install python3-numpy python3-matplotlib)";
+    if (const std::string why = missingPythonDeps(python); !why.empty()) GTEST_SKIP() << why;
     const std::string buildDir = fs::absolute(iris::testing::buildDir()).string();
     const Output r = runCapture("cd '" + iris::sourceDir() + "' && IRIS_BUILD_DIR='" + buildDir + "' " + python +
                                 " -m unittest discover -s experiments/tests");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("OK"), std::string::npos) << r.err;
+}
+
+TEST(ExperimentScripts, HtmlReportInHeadlessChromium) {
+    // experiments/tests/browser_check.py makes a quick channel_count report (fake renderer, real
+    // compare/merge) and checks it in Debian's headless Chromium: no console errors, every plot
+    // loaded, the comparison's flip / swipe / error-map controls change the shown pixels, pixel
+    // read-out. About 10-20 s. Exit 77 = browser not installed: a skip, but a failure under CI=true
+    // (.ci/install-deps installs chromium, chromium-driver and python3-selenium).
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    if (const std::string why = missingPythonDeps(python); !why.empty()) GTEST_SKIP() << why;
+    if (!fs::exists(absApp("compare")) || !fs::exists(absApp("merge"))) GTEST_SKIP() << "compare/merge not built";
+    const std::string buildDir = fs::absolute(iris::testing::buildDir()).string();
+    const Output r = runCapture("cd '" + iris::sourceDir() + "' && IRIS_BUILD_DIR='" + buildDir + "' " + python +
+                                " experiments/tests/browser_check.py");
+    const char* ci = std::getenv("CI");
+    if (r.exitCode == 77 && !(ci && std::string(ci) == "true")) GTEST_SKIP() << r.out;
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("PASSED"), std::string::npos) << r.out;
 }
