@@ -107,6 +107,9 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--skip-missing", action="store_true",
                    help="leave out scenes that are not available (with a warning) instead of stopping")
     p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
+    p.add_argument("--shard", default=None, metavar="I/N",
+                   help="render only jobs whose index is I modulo N (several machines or sessions); no report "
+                        "until --collect-only after every shard")
     args = p.parse_args(argv)
     args.argv = argv
     return args
@@ -142,8 +145,21 @@ def override_scenes(exp: Experiment, overrides) -> None:
     exp.scene_specs = specs
 
 
-def _run(exp: Experiment, args) -> int:
-    prov = report.provenance()   # before anything is written
+def parse_shard(text: str | None):
+    """--shard I/N → (I, N) with 0 <= I < N, or None."""
+    if not text:
+        return None
+    try:
+        i, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise ExperimentError(f"--shard expects I/N (e.g. 0/4), got '{text}'") from None
+    if not (n >= 1 and 0 <= i < n):
+        raise ExperimentError(f"--shard {text}: need 0 <= I < N")
+    return i, n
+
+
+def plan(exp: Experiment, args):
+    """(output folder, build folder, render jobs) of a run, without running anything."""
     bdir = tools.build_dir(args.build_dir)
     out = output_dir(exp, args)
     override_scenes(exp, args.scene)
@@ -174,7 +190,13 @@ def _run(exp: Experiment, args) -> int:
     if args.threads:
         for s in sweeps:
             s.fixed.setdefault("threads", args.threads)
-    jobs = sweep.expand(sweeps, out, render)
+    return out, bdir, sweep.expand(sweeps, out, render)
+
+
+def _run(exp: Experiment, args) -> int:
+    prov = report.provenance()   # before anything is written
+    shard = parse_shard(args.shard)
+    out, bdir, jobs = plan(exp, args)
 
     if args.dry_run:
         for j in jobs:
@@ -191,6 +213,18 @@ def _run(exp: Experiment, args) -> int:
               f"collect: sbatch --dependency=afterok:$jid --wrap {shlex.quote(again)}   (or run it after the array ends)")
         return 0
 
+    if shard and not args.collect_only:
+        mine = [j for j in jobs if j.index % shard[1] == shard[0]]
+        print(f"{exp.name}: shard {shard[0]}/{shard[1]}: {len(mine)} of {len(jobs)} render jobs -> {out}")
+        failed = [r for r in runner.run_local(mine, parallel=args.parallel, force=args.force, timeout=args.timeout)
+                  if not r.ok]
+        if failed:
+            raise ExperimentError(f"{len(failed)} of {len(mine)} renders of this shard failed (first: "
+                                  f"{failed[0].job.output.with_suffix('.log')}: {failed[0].message})")
+        missing = sum(1 for j in jobs if not j.output.exists())
+        print(f"{exp.name}: shard done; {missing} renders of other shards missing" +
+              ("" if missing else "; all renders exist: run again with --collect-only for the report"))
+        return 0
     if not args.collect_only:
         print(f"{exp.name}: {len(jobs)} render jobs -> {out}")
         results = runner.run_local(jobs, parallel=args.parallel, force=args.force, timeout=args.timeout)

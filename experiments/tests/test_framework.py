@@ -291,7 +291,9 @@ class ExperimentEndToEndTest(TempDirTest):
     def test_slurm_and_dry_run_modes_do_not_render(self):
         out, stdout = self.run_experiment("approximation_error", ["--slurm"])
         script = (out / "slurm_approximation_error.sh").read_text()
-        self.assertIn("#SBATCH --array=0-19\n", script)  # 5 thicknesses x (2 reference seeds + rgb + spectral)
+        # 5 thicknesses x (2 reference seeds + rgb + spectral) + convergence: 2 configurations x 2 spp levels x
+        # 2 seeds + 2 x 2 equal-time renders.
+        self.assertIn("#SBATCH --array=0-31\n", script)
         self.assertFalse((out / "renders").exists())
         self.assertIn("sbatch", stdout)
 
