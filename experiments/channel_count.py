@@ -10,7 +10,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from iris_experiments import grid  # noqa: E402
+from iris_experiments import grid, tools  # noqa: E402
+from iris_experiments.convergence import ConvergenceStudy  # noqa: E402
 from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
 from iris_experiments.sweep import Sweep  # noqa: E402
@@ -21,8 +22,17 @@ SCENES = {
                            note="spheres with the spectral thin-film materials"),
 }
 SPECTRAL_SAMPLES = [1, 2, 4, 8, 16, 32]
-FULL = {"spp": 256, "ref_spp": 1024, "ref_seeds": 4, "ref_samples": 8}
-QUICK = {"spp": 4, "ref_spp": 16, "ref_seeds": 2, "ref_samples": 8, "res": 32}
+FULL = {"spp": 256, "ref_spp": 1024, "ref_seeds": 4, "ref_samples": 8,
+        "convergence": {"spp_levels": [2 ** k for k in range(9)], "seeds": [1, 2, 3, 4], "time_limit": 30.0}}
+QUICK = {"spp": 4, "ref_spp": 16, "ref_seeds": 2, "ref_samples": 8, "res": 32,
+         "convergence": {"spp_levels": [1, 2, 4], "seeds": [1, 2], "time_limit": 0.2,
+                         "configs": ["N=1", "N=4", "N=32", "rgb", "N=4 independent"]}}
+# Error against wall time (issue 15): every configuration at 2^k spp, several seeds, against the
+# reference above; speed-ups are relative to BASELINE (the renderer's default).
+CONFIGURATIONS = {**{f"N={n}": {"mode": "spectral", "spectral_samples": n} for n in SPECTRAL_SAMPLES},
+                  "rgb": {"mode": "rgb"},
+                  "N=4 independent": {"mode": "spectral", "spectral_samples": 4, "wavelength_sampling": "independent"}}
+BASELINE = "N=4"   # hero wavelength sampling (render's default), 4 wavelengths per path
 # ---------------------------------------------------------------------------------------------
 
 
@@ -41,12 +51,25 @@ class ChannelCount(Experiment):
         c = self.cfg(quick)
         return {"mode": "quick" if quick else "full", "spp per test image": c["spp"],
                 "reference": f"{c['ref_seeds']} seeds x {c['ref_spp']} spp, spectral, {c['ref_samples']} wavelengths/path, merged",
-                "wavelengths per path": SPECTRAL_SAMPLES, "scenes": {k: v.path for k, v in self.scene_specs.items()}}
+                "wavelengths per path": SPECTRAL_SAMPLES, "scenes": {k: v.path for k, v in self.scene_specs.items()},
+                **self.study.settings()}
+
+    def make_study(self, quick, args):
+        c = self.cfg(quick)
+        conv = c["convergence"]
+        render = tools.build_dir(args.build_dir) / "render"
+        unavailable = {} if tools.render_supports(render, "--wavelength-sampling") else {
+            "N=4 independent": "render has no --wavelength-sampling option (independent wavelengths) yet"}
+        configs = {k: v for k, v in CONFIGURATIONS.items() if k in conv.get("configs", CONFIGURATIONS)}
+        return ConvergenceStudy(configs, BASELINE, {"mode": "spectral", "spectral_samples": c["ref_samples"]},
+                                conv["spp_levels"], conv["seeds"], c["ref_spp"], [1000 + i for i in range(c["ref_seeds"])],
+                                time_limit=conv["time_limit"], unavailable=unavailable, reuse_reference=("reference", {}))
 
     def sweeps(self, quick, args):
         c = self.cfg(quick)
         per_scene = self.quick_resolution(quick, c.get("res", 48))
-        return [
+        self.study = self.make_study(quick, args)
+        return self.study.sweeps(self.scene_paths(), per_scene) + [
             Sweep("reference", self.scene_paths(), axes={"seed": [1000 + i for i in range(c["ref_seeds"])]},
                   fixed={"mode": "spectral", "spectral_samples": c["ref_samples"], "spp": c["ref_spp"]},
                   per_scene=per_scene),
@@ -58,7 +81,9 @@ class ChannelCount(Experiment):
     def analyse(self, ctx):
         from iris_experiments.collect import job_row
         rows, figures, conclusions = [], [], []
+        studies = []
         for label in SCENES:
+            studies.append(self.study.analyse(ctx, label))
             refs = [j.output for j in ctx.by_sweep("reference") if j.label == label]
             ref = ctx.merge(refs, ctx.out_dir / "reference" / f"{label}.exr")
             tests = [j for j in ctx.by_sweep("spectral") + ctx.by_sweep("rgb") if j.label == label]
@@ -105,7 +130,10 @@ class ChannelCount(Experiment):
                                 for r in rows if r["scene"] == label] + ["reference"]))
         cols = ["scene", "wavelengths_per_path", "spp", "render_time_s", "relmse", "relmse_x_time", "psnr",
                 "de00_mean", "de00_p99"]
-        return Analysis(rows, cols, conclusions, figures=figures)
+        analysis = Analysis(rows, cols, conclusions, figures=figures)
+        for result in studies:
+            analysis.add_study(result)
+        return analysis
 
 
 if __name__ == "__main__":

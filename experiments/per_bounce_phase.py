@@ -21,6 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import grid  # noqa: E402
 from iris_experiments.collect import job_row  # noqa: E402
+from iris_experiments.convergence import ConvergenceStudy  # noqa: E402
 from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
 from iris_experiments.sweep import Sweep  # noqa: E402
@@ -43,8 +44,14 @@ VARIANTS = {   # per scene: the variants (settings applied together) and the ref
                    {"name": "incoherent", "phase_mode": "incoherent", "bounces": 1}], "exact"),
 }
 THICKNESS_NM = [76, 200, 350, 600, 1000]
-FULL = {"spp": 512, "spectral_samples": 8, "thickness": THICKNESS_NM}
-QUICK = {"spp": 4, "spectral_samples": 8, "res": 32, "thickness": [76, 350, 1000]}
+FULL = {"spp": 512, "spectral_samples": 8, "thickness": THICKNESS_NM,
+        "convergence": {"thickness": 350, "spp_levels": [2 ** k for k in range(9)], "seeds": [1, 2, 3],
+                        "ref_spp": 1024, "ref_seeds": [1000, 1001, 1002, 1003], "time_limit": 20.0}}
+QUICK = {"spp": 4, "spectral_samples": 8, "res": 32, "thickness": [76, 350, 1000],
+         "convergence": {"thickness": 350, "spp_levels": [1, 4], "seeds": [1, 2], "ref_spp": 16,
+                         "ref_seeds": [1000, 1001], "time_limit": 0.2}}
+# Error against wall time (issue 15): at one thickness every variant at 2^k spp with several seeds
+# against a converged render of the scene's reference variant, which is also the baseline.
 JND = 1.0
 # ---------------------------------------------------------------------------------------------
 
@@ -59,6 +66,16 @@ class PerBouncePhase(Experiment):
     def cfg(self, quick):
         return QUICK if quick else FULL
 
+    def make_study(self, quick, label):
+        c = self.cfg(quick)
+        conv = c["convergence"]
+        variants, reference = VARIANTS[label]
+        configs = {v["name"]: {k: x for k, x in v.items() if k != "name"} for v in variants}
+        return ConvergenceStudy(configs, reference, configs[reference], conv["spp_levels"], conv["seeds"],
+                                conv["ref_spp"], conv["ref_seeds"], time_limit=conv["time_limit"],
+                                fixed={"mode": "spectral", "spectral_samples": c["spectral_samples"],
+                                       "thickness": conv["thickness"]})
+
     def settings(self, quick):
         c = self.cfg(quick)
         return {"mode": "quick" if quick else "full", "thickness [nm]": c["thickness"],
@@ -66,7 +83,10 @@ class PerBouncePhase(Experiment):
                 "reference variant (seed 2)": {label: VARIANTS[label][1] for label in self.scene_specs},
                 "noise floor": "reference variant, seed 1 vs seed 2",
                 "spp": c["spp"], "render mode": f"spectral, {c['spectral_samples']} wavelengths/path",
-                "just-noticeable ΔE00": JND, "scenes": {k: v.path for k, v in self.scene_specs.items()}}
+                "just-noticeable ΔE00": JND, "scenes": {k: v.path for k, v in self.scene_specs.items()},
+                "convergence thickness [nm]": c["convergence"]["thickness"],
+                **{f"{label}: {k}": v for label in self.scene_specs
+                   for k, v in self.make_study(quick, label).settings().items()}}
 
     def sweeps(self, quick, args):
         c = self.cfg(quick)
@@ -82,6 +102,7 @@ class PerBouncePhase(Experiment):
                 Sweep("reference", {label: spec.path}, axes={"variant": [ref], "thickness": c["thickness"]},
                       fixed={**fixed, "seed": 2}, per_scene=per_scene),
             ]
+            sweeps += self.make_study(quick, label).sweeps({label: spec.path}, per_scene)
         return sweeps
 
     def analyse(self, ctx):
@@ -129,7 +150,10 @@ class PerBouncePhase(Experiment):
                                           title=f"{label}: phase treatment"))
         cols = ["scene", "variant", "compared_with", "thickness_nm", "spp", "de00_mean", "noise_de00_mean",
                 "excess_de00_mean", "de00_p99", "relmse"]
-        return Analysis(rows, cols, conclusions, figures=figures)
+        analysis = Analysis(rows, cols, conclusions, figures=figures)
+        for label in self.scene_specs:
+            analysis.add_study(self.make_study(ctx.args.quick, label).analyse(ctx, label))
+        return analysis
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from . import collect, report, runner, scenes, slurm, sweep, tools
+from . import collect, html_report, report, runner, scenes, slurm, sweep, tools
 from .errors import ExperimentError
 
 
@@ -44,6 +44,15 @@ class Analysis:
     conclusions: list                   # sentences computed from the data
     sections: list = field(default_factory=list)   # extra (heading, markdown) sections
     figures: list = field(default_factory=list)    # PNG paths (absolute) to embed in the report
+    # Interactive image comparisons of the HTML report: {"title", "reference": EXR, "tests": [(label, EXR)]}
+    comparisons: list = field(default_factory=list)
+
+    def add_study(self, result) -> None:
+        """Append a convergence study's sections, figures, conclusions and comparison."""
+        self.sections += result.sections
+        self.figures += result.figures
+        self.conclusions += result.conclusions
+        self.comparisons.append(result.comparison)
 
 
 class Experiment:
@@ -98,6 +107,9 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--skip-missing", action="store_true",
                    help="leave out scenes that are not available (with a warning) instead of stopping")
     p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
+    p.add_argument("--shard", default=None, metavar="I/N",
+                   help="render only jobs whose index is I modulo N (several machines or sessions); no report "
+                        "until --collect-only after every shard")
     args = p.parse_args(argv)
     args.argv = argv
     return args
@@ -133,7 +145,21 @@ def override_scenes(exp: Experiment, overrides) -> None:
     exp.scene_specs = specs
 
 
-def _run(exp: Experiment, args) -> int:
+def parse_shard(text: str | None):
+    """--shard I/N → (I, N) with 0 <= I < N, or None."""
+    if not text:
+        return None
+    try:
+        i, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise ExperimentError(f"--shard expects I/N (e.g. 0/4), got '{text}'") from None
+    if not (n >= 1 and 0 <= i < n):
+        raise ExperimentError(f"--shard {text}: need 0 <= I < N")
+    return i, n
+
+
+def plan(exp: Experiment, args):
+    """(output folder, build folder, render jobs) of a run, without running anything."""
     bdir = tools.build_dir(args.build_dir)
     out = output_dir(exp, args)
     override_scenes(exp, args.scene)
@@ -155,14 +181,22 @@ def _run(exp: Experiment, args) -> int:
         if not args.spp_scale > 0:
             raise ExperimentError(f"--spp-scale must be positive, got {args.spp_scale}")
         for s in sweeps:
-            if "spp" in s.fixed:
+            # spp 0 (render until --time-limit) stays 0.
+            if s.fixed.get("spp"):
                 s.fixed["spp"] = max(1, round(s.fixed["spp"] * args.spp_scale))
             if "spp" in s.axes:
-                s.axes["spp"] = [max(1, round(v * args.spp_scale)) for v in s.axes["spp"]]
+                scaled = [max(1, round(v * args.spp_scale)) if v else v for v in s.axes["spp"]]
+                s.axes["spp"] = list(dict.fromkeys(scaled))   # a series 1, 2, 4 halved: 1, 2
     if args.threads:
         for s in sweeps:
             s.fixed.setdefault("threads", args.threads)
-    jobs = sweep.expand(sweeps, out, render)
+    return out, bdir, sweep.expand(sweeps, out, render)
+
+
+def _run(exp: Experiment, args) -> int:
+    prov = report.provenance()   # before anything is written
+    shard = parse_shard(args.shard)
+    out, bdir, jobs = plan(exp, args)
 
     if args.dry_run:
         for j in jobs:
@@ -179,6 +213,18 @@ def _run(exp: Experiment, args) -> int:
               f"collect: sbatch --dependency=afterok:$jid --wrap {shlex.quote(again)}   (or run it after the array ends)")
         return 0
 
+    if shard and not args.collect_only:
+        mine = [j for j in jobs if j.index % shard[1] == shard[0]]
+        print(f"{exp.name}: shard {shard[0]}/{shard[1]}: {len(mine)} of {len(jobs)} render jobs -> {out}")
+        failed = [r for r in runner.run_local(mine, parallel=args.parallel, force=args.force, timeout=args.timeout)
+                  if not r.ok]
+        if failed:
+            raise ExperimentError(f"{len(failed)} of {len(mine)} renders of this shard failed (first: "
+                                  f"{failed[0].job.output.with_suffix('.log')}: {failed[0].message})")
+        missing = sum(1 for j in jobs if not j.output.exists())
+        print(f"{exp.name}: shard done; {missing} renders of other shards missing" +
+              ("" if missing else "; all renders exist: run again with --collect-only for the report"))
+        return 0
     if not args.collect_only:
         print(f"{exp.name}: {len(jobs)} render jobs -> {out}")
         results = runner.run_local(jobs, parallel=args.parallel, force=args.force, timeout=args.timeout)
@@ -205,12 +251,18 @@ def _run(exp: Experiment, args) -> int:
     table = report.markdown_table(analysis.rows, analysis.columns)
     # The command that renders and reports (a --collect-only run reports renders made by it).
     command = shlex.join(["python3", f"experiments/{exp.name}.py", *[a for a in args.argv if a != "--collect-only"]])
+    machine = report.machine_info(prov)
+    figures = [str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures]
+    sections = [("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections
     rep = report.write_report(
-        out / "report.md", title=exp.title, question=exp.question, machine=report.machine_info(),
-        settings=run_settings, conclusions=analysis.conclusions,
-        sections=[("Results", table + f"\n\nAll columns: [{csv_path.name}]({csv_path.name})")] + analysis.sections,
-        figures=[str(Path(f).relative_to(out)) if Path(f).is_relative_to(out) else str(f) for f in analysis.figures],
-        command=command)
+        out / "report.md", title=exp.title, question=exp.question, machine=machine, settings=run_settings,
+        conclusions=analysis.conclusions, sections=sections, figures=figures, command=command)
+    page = html_report.write_html_report(
+        out / "report.html", title=exp.title, question=exp.question, provenance=prov, machine=machine,
+        settings=run_settings, conclusions=analysis.conclusions, sections=sections,
+        figures=[Path(f) if Path(f).is_absolute() else out / f for f in analysis.figures],
+        comparisons=analysis.comparisons, command=command)
+    print(f"{exp.name}: wrote {page}")
     print(f"{exp.name}: wrote {rep}")
     for c in analysis.conclusions:
         print(f"  - {c}")

@@ -21,25 +21,37 @@ def cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
-def git_revision() -> str:
+def _git(*args) -> str:
+    return subprocess.run(["git", *args], cwd=REPO, capture_output=True, text=True, timeout=10).stdout.strip()
+
+
+def provenance() -> dict:
+    """Which commit the results come from. A working tree with uncommitted or untracked changes
+    (outside experiments/results/, where the results themselves are written) is not a commit: then
+    no commit is named. {"state": "clean" | "dirty" | "unknown", "commit": hash or None, "text"}."""
     try:
-        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True, text=True,
-                             timeout=10).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=REPO,
-                               capture_output=True, text=True, timeout=10).stdout.strip()
-        return rev + (" (with uncommitted changes)" if dirty else "") if rev else "unknown"
+        rev = _git("rev-parse", "HEAD")
+        changes = _git("status", "--porcelain", "--", ".", ":(exclude)experiments/results")
     except (OSError, subprocess.SubprocessError):
-        return "unknown"
+        rev, changes = "", ""
+    if not rev:
+        return {"state": "unknown", "commit": None, "text": "not made from a git checkout: no commit to name"}
+    if changes:
+        n = len(changes.splitlines())
+        return {"state": "dirty", "commit": None,
+                "text": f"made from a working tree with {n} uncommitted or untracked change(s): these results are "
+                        "not the results of any commit and cannot be reproduced from one"}
+    return {"state": "clean", "commit": rev, "text": f"commit {rev} (clean working tree)"}
 
 
-def machine_info() -> dict:
+def machine_info(prov: dict | None = None) -> dict:
     u = platform.uname()
     return {
         "uname": f"{u.system} {u.node} {u.release} {u.version} {u.machine}",
         "nproc": os.cpu_count(),
         "cpu": cpu_model(),
         "python": platform.python_version(),
-        "git": git_revision(),
+        "git": (prov or provenance())["text"],
         "date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S"),
     }
 

@@ -19,6 +19,7 @@ RENDER_OPTIONS = {
     "mode": "--mode",
     "spectral_samples": "--spectral-samples",
     "rgb_wavelengths": "--rgb-wavelengths",
+    "wavelength_sampling": "--wavelength-sampling",   # not in render yet: see tools.render_supports
 }
 
 

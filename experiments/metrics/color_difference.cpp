@@ -22,6 +22,21 @@ constexpr double kM[3][3] = {{0.4124564, 0.3575761, 0.1804375},
 constexpr double kWhite[3] = {kM[0][0] + kM[0][1] + kM[0][2], kM[1][0] + kM[1][1] + kM[1][2],
                               kM[2][0] + kM[2][1] + kM[2][2]};
 
+// Inverse of kM by the adjugate (cofactors over the determinant), once.
+struct InverseMatrix {
+    double m[3][3];
+    InverseMatrix() {
+        auto cof = [](int r, int c) {
+            const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+            return kM[r0][c0] * kM[r1][c1] - kM[r0][c1] * kM[r1][c0];
+        };
+        const double det = kM[0][0] * cof(0, 0) + kM[0][1] * cof(0, 1) + kM[0][2] * cof(0, 2);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) m[r][c] = cof(c, r) / det;  // (adj M)_rc = cofactor_cr
+    }
+};
+const InverseMatrix kMInverse;
+
 // CIELAB f(t) (CIE 15:2004, eq. 8.3–8.4): cube root above (6/29)^3, linear below.
 double labF(double t) {
     constexpr double d = 6.0 / 29.0;
@@ -39,6 +54,15 @@ double hueDeg(double b, double ap) {
 
 void linearRec709ToXYZ(double r, double g, double b, double xyz[3]) {
     for (int i = 0; i < 3; ++i) xyz[i] = kM[i][0] * r + kM[i][1] * g + kM[i][2] * b;
+}
+
+void xyzToLinearRec709(const double xyz[3], double rgb[3]) {
+    for (int i = 0; i < 3; ++i)
+        rgb[i] = kMInverse.m[i][0] * xyz[0] + kMInverse.m[i][1] * xyz[1] + kMInverse.m[i][2] * xyz[2];
+}
+
+void rec709WhiteXYZ(double xyz[3]) {
+    for (int i = 0; i < 3; ++i) xyz[i] = kWhite[i];
 }
 
 Lab linearRec709ToLab(double r, double g, double b) {

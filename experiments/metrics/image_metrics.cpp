@@ -1,7 +1,9 @@
 // Image error metrics. Definitions (with their sources) are in docs/metrics.md:
 //  MSE, relMSE = (x − r)² / (r² + ε) with ε = 1e-2 (Rousselle, Knaus, Zwicker 2011, "Adaptive sampling
 //  and reconstruction using greedy error minimization", SIGGRAPH Asia), PSNR on values clamped to
-//  [0,1] with peak 1, and CIEDE2000 (Sharma, Wu, Dalal 2005) in CIELAB from linear Rec.709 (D65).
+//  [0,1] with peak 1, SMAPE = |x − r| / (|x| + |r| + ε) with ε = 1e-2 (symmetric mean absolute
+//  percentage error as used by Vogels et al. 2018, "Denoising with kernel prediction and asymmetric
+//  loss functions", SIGGRAPH), and CIEDE2000 (Sharma, Wu, Dalal 2005) in CIELAB from linear Rec.709 (D65).
 #include "experiments/metrics/image_metrics.h"
 
 #include <algorithm>
@@ -24,15 +26,6 @@ void checkSameSize(const Image& test, const Image& ref) {
         fail("image buffer does not match its declared size");
 }
 
-/// Matching colour channel lists of both images (same count), or an error.
-void matchedChannels(const Image& test, const Image& ref, std::vector<int>& ct, std::vector<int>& cr) {
-    checkSameSize(test, ref);
-    ct = colourChannels(test);
-    cr = colourChannels(ref);
-    if (ct.size() != cr.size())
-        fail("channel mismatch: test has ", ct.size(), " colour channel(s), reference has ", cr.size());
-}
-
 Lab labOf(const Image& img, size_t p, const std::vector<int>& ch) {
     const float* px = img.pixels.data() + p * size_t(img.channels);
     if (ch.size() == 1) return linearRec709ToLab(px[ch[0]], px[ch[0]], px[ch[0]]);
@@ -46,6 +39,14 @@ bool finitePixel(const Image& img, size_t p, const std::vector<int>& ch) {
 }
 
 }  // namespace
+
+void matchedChannels(const Image& test, const Image& ref, std::vector<int>& ct, std::vector<int>& cr) {
+    checkSameSize(test, ref);
+    ct = colourChannels(test);
+    cr = colourChannels(ref);
+    if (ct.size() != cr.size())
+        fail("channel mismatch: test has ", ct.size(), " colour channel(s), reference has ", cr.size());
+}
 
 std::vector<int> colourChannels(const Image& img) {
     const int r = img.channelIndex("R"), g = img.channelIndex("G"), b = img.channelIndex("B");
@@ -72,7 +73,7 @@ ImageErrors compareImages(const Image& test, const Image& ref) {
     e.width = test.width;
     e.height = test.height;
     e.channels = int(ct.size());
-    double sumSq = 0, sumRel = 0, sumClamped = 0, sumDE = 0;
+    double sumSq = 0, sumRel = 0, sumSmape = 0, sumClamped = 0, sumDE = 0;
     size_t nValues = 0;
     std::vector<double> deltaE;
     deltaE.reserve(test.pixelCount());
@@ -87,6 +88,7 @@ ImageErrors compareImages(const Image& test, const Image& ref) {
             const double d = x - r;
             sumSq += d * d;
             sumRel += d * d / (r * r + kRelMSEEpsilon);
+            sumSmape += std::abs(d) / (std::abs(x) + std::abs(r) + kSmapeEpsilon);
             const double dc = std::clamp(x, 0.0, 1.0) - std::clamp(r, 0.0, 1.0);
             sumClamped += dc * dc;
             ++nValues;
@@ -98,16 +100,46 @@ ImageErrors compareImages(const Image& test, const Image& ref) {
     }
     if (nValues == 0) {
         const double nan = std::numeric_limits<double>::quiet_NaN();
-        e.mse = e.relMse = e.psnr = e.meanDeltaE00 = e.p99DeltaE00 = e.maxDeltaE00 = nan;
+        e.mse = e.relMse = e.smape = e.psnr = e.meanDeltaE00 = e.p99DeltaE00 = e.maxDeltaE00 = nan;
         return e;
     }
     e.mse = sumSq / double(nValues);
     e.relMse = sumRel / double(nValues);
+    e.smape = sumSmape / double(nValues);
     const double mseClamped = sumClamped / double(nValues);
     e.psnr = mseClamped > 0 ? 10.0 * std::log10(1.0 / mseClamped) : std::numeric_limits<double>::infinity();
     e.meanDeltaE00 = sumDE / double(deltaE.size());
     e.p99DeltaE00 = percentile(std::move(deltaE), 99.0);
     return e;
+}
+
+std::vector<ChannelErrors> channelErrors(const Image& test, const Image& ref, std::vector<std::string> names) {
+    checkSameSize(test, ref);
+    if (names.empty())
+        for (const std::string& n : test.channelNames)
+            if (ref.channelIndex(n) >= 0) names.push_back(n);
+    std::vector<ChannelErrors> out;
+    for (const std::string& name : names) {
+        const int ct = test.channelIndex(name), cr = ref.channelIndex(name);
+        if (ct < 0 || cr < 0) fail("channel '", name, "' is missing in the ", ct < 0 ? "test" : "reference", " image");
+        ChannelErrors e{name};
+        for (size_t p = 0; p < test.pixelCount(); ++p) {
+            const double x = test.pixels[p * size_t(test.channels) + size_t(ct)];
+            const double r = ref.pixels[p * size_t(ref.channels) + size_t(cr)];
+            if (!std::isfinite(x) || !std::isfinite(r)) continue;
+            const double d = x - r;
+            e.mse += d * d;
+            e.relMse += d * d / (r * r + kRelMSEEpsilon);
+            e.smape += std::abs(d) / (std::abs(x) + std::abs(r) + kSmapeEpsilon);
+            ++e.count;
+        }
+        const double n = e.count ? double(e.count) : std::numeric_limits<double>::quiet_NaN();
+        e.mse /= n;
+        e.relMse /= n;
+        e.smape /= n;
+        out.push_back(e);
+    }
+    return out;
 }
 
 Image deltaE00Map(const Image& test, const Image& ref) {

@@ -49,6 +49,8 @@ class TempDirTest(unittest.TestCase):
     def fake_build(self):
         """A build folder with the fake render and links to the real compare / merge."""
         bdir = self.tmp / "build"
+        if bdir.exists():
+            return bdir
         bdir.mkdir()
         render = bdir / "render"
         render.write_text(f"#!/bin/sh\nexec {sys.executable} {HERE / 'fake_render.py'} \"$@\"\n")
@@ -291,17 +293,56 @@ class ExperimentEndToEndTest(TempDirTest):
     def test_slurm_and_dry_run_modes_do_not_render(self):
         out, stdout = self.run_experiment("approximation_error", ["--slurm"])
         script = (out / "slurm_approximation_error.sh").read_text()
-        self.assertIn("#SBATCH --array=0-19\n", script)  # 5 thicknesses x (2 reference seeds + rgb + spectral)
+        # 5 thicknesses x (2 reference seeds + rgb + spectral) + convergence: 2 configurations x 2 spp levels x
+        # 2 seeds + 2 x 2 equal-time renders.
+        self.assertIn("#SBATCH --array=0-31\n", script)
         self.assertFalse((out / "renders").exists())
         self.assertIn("sbatch", stdout)
 
     def test_spp_scale_and_dry_run(self):
         _, stdout = self.run_experiment("channel_count", ["--dry-run", "--spp-scale", "0.5"])
         lines = stdout.strip().splitlines()
-        self.assertEqual(len(lines), 2 + 6 + 1)  # reference seeds, wavelength counts, rgb
-        self.assertTrue(all(" --spp 2 " in l for l in lines[2:]))  # quick spp 4 halved
-        self.assertTrue(all(" --spp 8 " in l for l in lines[:2]))  # reference 16 halved
+        by_sweep = {}
+        for line in lines:
+            by_sweep.setdefault(line.split("/renders/")[1].split("/")[0], []).append(line)
+        self.assertEqual(len(by_sweep["reference"]), 2)
+        self.assertEqual(len(by_sweep["spectral"]) + len(by_sweep["rgb"]), 6 + 1)  # wavelength counts, rgb
+        self.assertTrue(all(" --spp 2 " in l for l in by_sweep["spectral"] + by_sweep["rgb"]))  # quick spp 4 halved
+        self.assertTrue(all(" --spp 8 " in l for l in by_sweep["reference"]))  # reference 16 halved
+        # Convergence: quick levels 1, 2, 4 halved are 1, 1, 2 -> 1, 2 (no duplicate jobs), 2 seeds, the 4
+        # quick configurations (the fake renderer has no --wavelength-sampling: "N=4 independent" is left out).
+        conv = by_sweep["convergence"]
+        self.assertEqual(len(conv), 4 * 2 * 2)
+        self.assertEqual(sorted({l.split(" --spp ")[1].split()[0] for l in conv}), ["1", "2"])
+        self.assertFalse(any("independent" in l for l in lines))
+        equal = by_sweep["convergence_equal_time"]
+        self.assertEqual(len(equal), 4 * 2)
+        self.assertTrue(all(" --spp 0 " in l and " --time-limit 0.2 " in l for l in equal))  # spp 0 is not scaled
         self.assertFalse((self.tmp / "out").exists())
+
+    def test_shards_render_disjoint_jobs_and_collect_makes_the_report(self):
+        out, stdout = self.run_experiment("approximation_error", ["--shard", "0/2"])
+        self.assertIn("shard 0/2: 16 of 32 render jobs", stdout)
+        self.assertFalse((out / "report.md").exists())   # no report until every shard is done
+        rendered = sorted(p.name for p in (out / "renders").rglob("*.exr"))
+        self.assertEqual(len(rendered), 16)
+        _, stdout = self.run_experiment("approximation_error", ["--shard", "1/2"])
+        self.assertIn("all renders exist", stdout)
+        self.assertEqual(len(list((out / "renders").rglob("*.exr"))), 32)
+        out, _ = self.run_experiment("approximation_error", ["--collect-only"])
+        html = (out / "report.html").read_text()
+        self.assertIn("Convergence: relMSE", html)
+        self.assertNotIn(" src='http", html)
+        self.assertNotIn(' src="http', html)
+        # Bad shard specifications are one-line errors (exit 2).
+        err = io.StringIO()
+        sys.path.insert(0, str(REPO / "experiments"))
+        import approximation_error
+        with redirect_stderr(err), redirect_stdout(io.StringIO()):
+            code = run(approximation_error.ApproximationError(), ["--quick", "--shard", "2/2", "--build-dir",
+                                                                   str(self.fake_build()), "--out", str(out)])
+        self.assertEqual(code, 2)
+        self.assertIn("--shard 2/2: need 0 <= I < N", err.getvalue())
 
     def test_missing_scene_fails_clearly(self):
         sys.path.insert(0, str(REPO / "experiments"))
@@ -313,6 +354,55 @@ class ExperimentEndToEndTest(TempDirTest):
             code = run(exp, ["--quick", "--build-dir", str(self.fake_build()), "--out", str(self.tmp / "o")])
         self.assertEqual(code, 2)
         self.assertIn("scenes/does_not_exist.xml: scene not available yet", err.getvalue())
+
+
+class ConvergenceMathTest(unittest.TestCase):
+    def test_fit_interpolation_and_common_values(self):
+        from iris_experiments import convergence as cv
+        times = [1.0, 2.0, 4.0, 8.0]
+        errors = [0.8, 0.4, 0.2, 0.1]         # error ∝ 1 / time
+        slope, icpt = cv.fit_loglog(times, errors)
+        self.assertAlmostEqual(slope, -1.0, places=12)
+        self.assertAlmostEqual(10 ** icpt, 0.8, places=12)
+        t, extrapolated = cv.time_to_error(times, errors, 0.3, (slope, icpt))
+        self.assertAlmostEqual(t, 0.8 / 0.3, places=9)   # on the line through (2, 0.4) and (4, 0.2)
+        self.assertFalse(extrapolated)
+        t, extrapolated = cv.time_to_error(times, errors, 0.05, (slope, icpt))
+        self.assertAlmostEqual(t, 16.0, places=9)
+        self.assertTrue(extrapolated)
+        e, extrapolated = cv.loglog_at(times, errors, 3.0, (slope, icpt))
+        self.assertAlmostEqual(e, 0.8 / 3.0, places=9)
+        self.assertFalse(extrapolated)
+        self.assertAlmostEqual(cv.common_value([0.1, 0.2], [1.0, 0.8]), math.sqrt(0.2 * 0.8))
+        self.assertEqual(cv.common_value([0.5, 0.2], [0.4, 0.8]), 0.5)   # no overlap: the largest low
+        m, sem = cv.mean_sem([1.0, 3.0])
+        self.assertEqual(m, 2.0)
+        self.assertAlmostEqual(sem, 1.0)
+
+
+class ProvenanceAndStatusTest(unittest.TestCase):
+    def test_dirty_tree_names_no_commit_and_status_marks_stale_results(self):
+        prov = report.provenance()
+        self.assertIn(prov["state"], ("clean", "dirty", "unknown"))
+        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=REPO, capture_output=True, text=True).stdout.strip()
+        if prov["state"] == "dirty":
+            self.assertIsNone(prov["commit"])
+            self.assertNotIn(head[:7], prov["text"])
+            self.assertIn("not the results of any commit", prov["text"])
+        elif prov["state"] == "clean":
+            self.assertEqual(prov["text"], f"commit {head} (clean working tree)")
+        sys.path.insert(0, str(REPO / "experiments"))
+        import run_all
+        fields = run_all._report_fields("# T\n\nCommand:\n\n    python3 x.py --spp-scale 0.5\n\n## Machine\n\n"
+                                        "- git: abc (with uncommitted changes)\n- date_utc: 2026\n\n## Settings\n\n"
+                                        "- spp scale: 0.5 (every ...)\n\n## Conclusions (computed)\n\n- one\n- two\n\n"
+                                        "## Results\n\n| a |\n")
+        self.assertEqual(fields["conclusions"], ["one", "two"])
+        self.assertEqual(fields["command"], "python3 x.py --spp-scale 0.5")
+        self.assertTrue(fields["spp scale"].startswith("0.5"))
+        status = run_all.status_markdown(["channel_count"])
+        self.assertIn("## channel_count", status)
+        self.assertIn("- status: ", status)
 
 
 if __name__ == "__main__":

@@ -97,12 +97,23 @@ TEST_F(AppTest, CompareReportsMetricsAsTextAndJson) {
     EXPECT_NEAR(jsonField(json.out, "relmse"), 0.1, 1e-6) << json.out;  // 0.01 / (0.09 + 0.01)
     EXPECT_NEAR(jsonField(json.out, "mse"), 0.01, 1e-7) << json.out;
     EXPECT_NEAR(jsonField(json.out, "psnr"), 20.0, 1e-4) << json.out;
+    EXPECT_NEAR(jsonField(json.out, "smape"), 0.1 / 0.71, 1e-6) << json.out;  // |0.1| / (0.4 + 0.3 + 0.01)
+    // Uniform greys: FLIP is the colour pipeline's value (tests/experiments/test_flip.cpp), > 0 here.
+    EXPECT_GT(jsonField(json.out, "flip_ldr_mean"), 0.05) << json.out;
+    EXPECT_LT(jsonField(json.out, "flip_ldr_mean"), 0.95) << json.out;
+    EXPECT_GT(jsonField(json.out, "flip_hdr_mean"), 0.0) << json.out;
     const Image diff = readImage(file("diff.exr"));
-    ASSERT_EQ(diff.channels, 4);
+    ASSERT_EQ(diff.channels, 5);
     EXPECT_NEAR(diff.at(2, 1, diff.channelIndex("R")), 0.1f, 1e-6f);
     EXPECT_GT(diff.at(2, 1, diff.channelIndex("dE00")), 0.5f);
-    const Output same = runCapture(absApp("compare") + " " + file("ref.exr") + " " + file("ref.exr") + " --json");
+    EXPECT_NEAR(diff.at(2, 1, diff.channelIndex("FLIP")), jsonField(json.out, "flip_hdr_mean"), 1e-5);
+    const Output same = runCapture(absApp("compare") + " " + file("ref.exr") + " " + file("ref.exr") + " --json --per-channel");
     EXPECT_NE(same.out.find("\"psnr\": null"), std::string::npos) << same.out;
+    EXPECT_EQ(jsonField(same.out, "flip_hdr_mean"), 0.0) << same.out;
+    EXPECT_NE(same.out.find("\"per_channel\": [{\"name\": \"R\", \"count\": 32, \"mse\": 0,"), std::string::npos) << same.out;
+    const Output noFlip = runCapture(absApp("compare") + " " + file("test.exr") + " " + file("ref.exr") + " --json --no-flip");
+    EXPECT_NE(noFlip.out.find("\"flip_ldr_mean\": null"), std::string::npos) << noFlip.out;
+    EXPECT_EQ(runCapture(absApp("compare") + " " + file("test.exr") + " " + file("ref.exr") + " --ppd -3").exitCode, 1);
 }
 
 TEST_F(AppTest, CompareErrorsAreOneLineNamingTheFile) {
@@ -142,14 +153,38 @@ TEST_F(AppTest, MergeWeightsBySppAndRefusesMismatches) {
     EXPECT_NE(size.err.find(file("small.exr")), std::string::npos) << size.err;
 }
 
+/// Why the Python experiment tests cannot run here ("" when they can).
+static std::string missingPythonDeps(const std::string& python) {
+    if (runCapture(python + " -c 'import numpy, matplotlib'").exitCode != 0)
+        return python + " lacks numpy/matplotlib (apt-get install python3-numpy python3-matplotlib)";
+    return {};
+}
+
 TEST(ExperimentScripts, PythonFrameworkUnitTests) {
     // Debian's python3 (with numpy and matplotlib); a pyenv python3 earlier in PATH may lack them.
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    if (runCapture(python + " -c 'import numpy, matplotlib'").exitCode != 0)
-        GTEST_SKIP() << python << " lacks numpy/matplotlib (apt-get install python3-numpy python3-matplotlib)";
+    if (const std::string why = missingPythonDeps(python); !why.empty()) GTEST_SKIP() << why;
     const std::string buildDir = fs::absolute(iris::testing::buildDir()).string();
     const Output r = runCapture("cd '" + iris::sourceDir() + "' && IRIS_BUILD_DIR='" + buildDir + "' " + python +
                                 " -m unittest discover -s experiments/tests");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("OK"), std::string::npos) << r.err;
+}
+
+TEST(ExperimentScripts, HtmlReportInHeadlessChromium) {
+    // experiments/tests/browser_check.py makes a quick channel_count report (fake renderer, real
+    // compare/merge) and checks it in Debian's headless Chromium: no console errors, every plot
+    // loaded, the comparison's flip / swipe / error-map controls change the shown pixels, pixel
+    // read-out. About 10-20 s. Exit 77 = browser not installed: a skip, but a failure under CI=true
+    // (.ci/install-deps installs chromium, chromium-driver and python3-selenium).
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    if (const std::string why = missingPythonDeps(python); !why.empty()) GTEST_SKIP() << why;
+    if (!fs::exists(absApp("compare")) || !fs::exists(absApp("merge"))) GTEST_SKIP() << "compare/merge not built";
+    const std::string buildDir = fs::absolute(iris::testing::buildDir()).string();
+    const Output r = runCapture("cd '" + iris::sourceDir() + "' && IRIS_BUILD_DIR='" + buildDir + "' " + python +
+                                " experiments/tests/browser_check.py");
+    const char* ci = std::getenv("CI");
+    if (r.exitCode == 77 && !(ci && std::string(ci) == "true")) GTEST_SKIP() << r.out;
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("PASSED"), std::string::npos) << r.out;
 }

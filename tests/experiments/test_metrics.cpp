@@ -2,6 +2,7 @@
 // PSNR on hand-computed cases, percentile ranks, per-pixel noise statistics.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -227,4 +228,42 @@ TEST(Metrics, CompareWithinNoiseDetectsBias) {
     const NoiseComparison bad = compareWithinNoise(a, var, biased, var);
     EXPECT_GT(bad.meanSquaredZ, 5.0);
     EXPECT_GT(bad.fractionAbove3, 0.3);
+}
+
+TEST(Metrics, SmapeAndPerChannelErrors) {
+    // SMAPE = mean |x − r| / (|x| + |r| + 0.01): 0.1 / 0.71 for 0.4 vs 0.3; 0 when equal; < 1 always.
+    Image test(2, 1, 3), ref(2, 1, 3);
+    for (float& v : ref.pixels) v = 0.3f;
+    test.pixels = {0.4f, 0.4f, 0.4f, 0.3f, 0.3f, 0.3f};
+    EXPECT_NEAR(compareImages(test, ref).smape, 0.5 * 0.1 / 0.71, 1e-7);
+    EXPECT_EQ(compareImages(ref, ref).smape, 0.0);
+    test.pixels = {1e6f, 1e6f, 1e6f, 0.3f, 0.3f, 0.3f};
+    EXPECT_LT(compareImages(test, ref).smape, 0.5);
+    // Per channel (named bands, as a spectral image has): only channel "B" differs here.
+    Image a(3, 2, 3), b(3, 2, 3);
+    for (size_t p = 0; p < a.pixelCount(); ++p) a.pixels[3 * p + 2] = 0.5f;
+    const std::vector<ChannelErrors> ch = channelErrors(a, b);
+    ASSERT_EQ(ch.size(), 3u);
+    EXPECT_EQ(ch[2].name, "B");
+    EXPECT_EQ(ch[2].count, 6u);
+    EXPECT_NEAR(ch[2].mse, 0.25, 1e-9);
+    EXPECT_NEAR(ch[2].relMse, 0.25 / 0.01, 1e-6);
+    EXPECT_NEAR(ch[2].smape, 0.5 / 0.51, 1e-7);
+    EXPECT_EQ(ch[0].mse, 0.0);
+    EXPECT_THROW(channelErrors(a, b, {"S0.550nm"}), Error);  // a band the images do not have
+    EXPECT_EQ(channelErrors(a, b, {"G"}).size(), 1u);
+}
+
+TEST(Metrics, XyzToLinearRec709InvertsTheSrgbMatrix) {
+    for (const std::array<double, 3> rgb : {std::array<double, 3>{0.2, 0.5, 0.9}, std::array<double, 3>{1, 0, 0}}) {
+        double xyz[3], back[3];
+        linearRec709ToXYZ(rgb[0], rgb[1], rgb[2], xyz);
+        xyzToLinearRec709(xyz, back);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], rgb[k], 1e-12);
+    }
+    double white[3];
+    rec709WhiteXYZ(white);
+    EXPECT_NEAR(white[0], 0.95047, 1e-5);
+    EXPECT_NEAR(white[1], 1.0, 1e-6);
+    EXPECT_NEAR(white[2], 1.08883, 1e-5);
 }
