@@ -15,7 +15,6 @@
 #include "core/arena.h"
 #include "materials/albedo.h"
 #include "materials/material.h"
-#include "materials/thesis_channels.h"
 #include "spectral/wavelengths.h"
 
 using namespace iris;
@@ -54,7 +53,7 @@ void print(const Table& t) {
         const MaterialPtr mat = MaterialRegistry::instance().create(*row.props);
         std::printf("| %s |", row.label.c_str());
         for (float c : t.cosines) {
-            SampledWavelengths wl = SampledWavelengths::rgb(thesisDefaultWavelengths());
+            SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
             Arena arena;
             const BSDF* b = mat->getBSDF(ShadingPoint{}, wl, arena);
             const vec3 wo(std::sqrt(std::max(0.0f, 1 - c * c)), 0.0f, c);

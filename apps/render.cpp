@@ -32,6 +32,7 @@ extern "C" void onSignal(int sig) {
     std::signal(sig, SIG_DFL);  // a second Ctrl-C terminates immediately
 }
 
+/// printf format: %s is the default RGB channel wavelengths.
 const char* kUsage = R"(usage: render [scene.xml] [options]
 Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
 
@@ -50,7 +51,7 @@ Spectral transport
   --mode spectral|rgb      spectral (default): N sampled wavelengths per path, film in CIE XYZ;
                            rgb: 3 fixed channel wavelengths, values used as linear Rec.709 RGB
   --spectral-samples N     wavelengths per path in spectral mode, 1..32 (default 4)
-  --rgb-wavelengths R,G,B  channel wavelengths in nm for RGB mode (default 645,525,445)
+  --rgb-wavelengths R,G,B  channel wavelengths in nm for RGB mode (default %s)
   --uniform-wavelengths    sample wavelengths uniformly instead of by visible importance
 Scene
   -D name=value            override a <default> parameter of the scene (repeatable)
@@ -108,7 +109,8 @@ int main(int argc, char** argv) {
             return argv[++i];
         };
         if (a == "-h" || a == "--help") {
-            std::fputs(kUsage, stdout);
+            const vec3 l = defaultChannelWavelengths();
+            std::printf(kUsage, strCat(l.x, ",", l.y, ",", l.z).c_str());
             return 0;
         } else if (a == "--version") {
             std::printf("iris render %s\n", IRIS_VERSION);

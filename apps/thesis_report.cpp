@@ -19,8 +19,8 @@
 #include "core/rng.h"
 #include "materials/albedo.h"
 #include "materials/material.h"
-#include "materials/thesis_channels.h"
 #include "materials/rough_plastic_tables.h"
+#include "spectral/wavelengths.h"
 
 using namespace iris;
 
@@ -101,7 +101,7 @@ void printAlbedo(int samples) {
         double maxA = 0, maxSe = 0;
         for (float co : cosines) {
             Arena arena;
-            SampledWavelengths wl = SampledWavelengths::rgb(thesisDefaultWavelengths());
+            SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
             const BSDF* bsdf = m->getBSDF(ShadingPoint{}, wl, arena);
             const vec3 wo(std::sqrt(1 - co * co), 0, co);
             const std::vector<AlbedoEstimate> a = directionalAlbedo(*bsdf, wo, samples, 17);

@@ -40,24 +40,20 @@ private:
 
 class ConductorMaterial final : public Material {
 public:
-    ConductorMaterial(ConductorSpectra c, SpectrumTexturePtr scale) : c_(std::move(c)), scale_(std::move(scale)) {}
+    ConductorMaterial(ConductorIOR c, SpectrumTexturePtr scale) : c_(std::move(c)), scale_(std::move(scale)) {}
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
-        SampledSpectrum eta(wl.size()), k(wl.size());
-        if (!c_.mirror()) {
-            eta = c_.eta->sample(wl) / c_.extIOR;
-            k = c_.k->sample(wl) / c_.extIOR;
-        }
-        return arena.make<ConductorBSDF>(eta, k, scale_->eval(sp.tex, wl), c_.mirror());
+        SampledSpectrum eta, k;
+        c_.sample(wl, &eta, &k);
+        return arena.make<ConductorBSDF>(eta, k, scale_->eval(sp.tex, wl), c_.mirror);
     }
 
 private:
-    ConductorSpectra c_;
+    ConductorIOR c_;
     SpectrumTexturePtr scale_;
 };
 
 std::shared_ptr<Material> createConductor(const Properties& p) {
-    ConductorSpectra c = readConductor(p);
-    if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "conductor: ext_ior must be > 0, got ", c.extIOR);
+    ConductorIOR c = readConductor(p);
     return std::make_shared<ConductorMaterial>(
         std::move(c), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }

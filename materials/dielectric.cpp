@@ -1,16 +1,16 @@
 // Smooth dielectric interface: Fresnel-weighted choice between mirror reflection and refraction
 // (pbrt-v4 §9.5; Mitsuba 3 plugin "dielectric"). Works from both sides (wo.z < 0 = inside).
-//   int_ior  (default "bk7"), ext_ior (default "air"): float, IOR preset name, rgb (per-channel
-//            η_R, η_G, η_B), spectrum, or Cauchy/Sellmeier coefficients (spectral/dispersion.h)
+//   int_ior  (default "bk7"), ext_ior (default "air"): any form of spectral/ior_params.h (float,
+//            preset name, rgb per channel, spectrum, int_cauchy_*/int_sellmeier_*, ...)
 //   specular_reflectance, specular_transmittance  scale factors (default 1)
 // Transmission in Radiance mode is scaled by (η_i/η_t)² (non-symmetric BTDF, Veach 1997 §5.2).
 // Directions use one η: the hero wavelength's in spectral mode (secondaries are terminated when η
 // varies with λ), the green channel's in RGB mode; Fresnel factors use each channel's own η.
 #include "core/registry.h"
-#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -67,11 +67,7 @@ private:
 };
 
 std::shared_ptr<Material> createDielectric(const Properties& p) {
-    IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
-    for (float l = kLambdaMin; l <= kLambdaMax; l += 10.0f)  // indices must be positive over the whole range
-        if (!(in.eval(l) > 0) || !(ext.eval(l) > 0))
-            failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "dielectric: int_ior and ext_ior must be > 0, got ",
-                   in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
+    auto [in, ext] = readInterfaceIOR(p);
     return std::make_shared<DielectricMaterial>(
         std::move(in), std::move(ext), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),
         getSpectrumTexture(p, "specular_transmittance", SpectrumKind::Reflectance, 1.0f));

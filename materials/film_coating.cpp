@@ -11,69 +11,16 @@
 #include "spectral/conductor_presets.h"
 #include "spectral/film_airy.h"
 #include "spectral/film_airy_batch.h"
-#include "spectral/spectrum_params.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
-
-// ---- IorSpec ----
-
-IorSpec IorSpec::fromProperties(const Properties& p, const std::string& name, float def, const vec3& channelLambdas) {
-    IorSpec s(def);
-    s.lambdas_ = channelLambdas;
-    if (!p.has(name)) return s;
-    try {
-        s.values_ = p.getRGB(name, vec3(def));  // float or per-channel triple
-        s.perChannel_ = true;
-        s.lerp_ = ChannelLerp(s.values_, s.lambdas_);
-    } catch (const Error&) {
-        s.spectrum_ = getSpectrum(p, name, SpectrumKind::Unbounded);
-    }
-    // Validate over the visible range (and the channel values).
-    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
-        const float v = s.at(l);
-        if (!std::isfinite(v)) failAt(p.locationOf(name), "parameter '", name, "' is not finite at ", l, " nm");
-    }
-    return s;
-}
-
-IorSpec IorSpec::fromIOR(const IOR& ior) {
-    IorSpec s;
-    s.ior_ = std::make_shared<const IOR>(ior);
-    return s;
-}
-
-float IorSpec::at(float lambda) const {
-    if (ior_) return ior_->eval(lambda);
-    if (spectrum_) return spectrum_->eval(lambda);
-    if (constantValue()) return values_[0];
-    return lerp_(lambda);
-}
-
-SampledSpectrum IorSpec::sampleAll(const SampledWavelengths& wl) const {
-    if (ior_) return ior_->sample(wl);
-    if (!spectrum_ && constantValue()) return SampledSpectrum(wl.size(), values_[0]);  // = at() everywhere
-    SampledSpectrum r(wl.size());
-    for (int k = 0; k < wl.size(); ++k) r[k] = sample(wl, k);
-    return r;
-}
-
-float IorSpec::sample(const SampledWavelengths& wl, int k) const {
-    if (ior_) return ior_->sample(wl)[k];  // RGB mode: per-channel values exactly
-    if (perChannel_ && wl.isRGB() && k < 3) return values_[k];  // the triple, unchanged
-    return at(wl.lambda(k));
-}
 
 // ---- FilmCoatingSpec ----
 
 namespace {
 
-void checkPositive(const Properties& p, const std::string& name, const IorSpec& s, bool allowZero) {
-    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
-        const float v = s.at(l);
-        if (allowZero ? v < 0 : v <= 0)
-            failAt(p.locationOf(name), "parameter '", name, "' must be ", allowZero ? ">= 0" : "> 0", ", got ", v,
-                   " at ", l, " nm");
-    }
+IOR readExtinction(const Properties& p, const std::string& name, float def) {
+    return readIOR(p, name, IOR::constant(def), IorQuantity::Extinction);
 }
 
 }  // namespace
@@ -81,38 +28,27 @@ void checkPositive(const Properties& p, const std::string& name, const IorSpec& 
 FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                                 float defThickness, const char* etaName, const char* kName) {
     FilmCoatingSpec s;
-    s.extIor = p.getFloat("ext_ior", 1.0f);
-    if (!(s.extIor > 0)) failAt(p.locationOf("ext_ior"), "ext_ior must be > 0, got ", s.extIor);
-    s.filmIor = IorSpec::fromIOR(readIOR(p, "film", "1.5"));
-    s.filmK = IorSpec::fromProperties(p, "film_k", 0.0f);
-    checkPositive(p, "film_ior", s.filmIor, false);
-    checkPositive(p, "film_k", s.filmK, true);
+    s.extIor = readConstantIOR(p, "ext_ior", 1.0f);
+    s.filmIor = readIOR(p, "film_ior", IOR::constant(1.5f));
+    s.filmK = readExtinction(p, "film_k", 0.0f);
     s.thickness = getFloatTexture(p, "thickness", defThickness);
     if (s.thickness->isConstant() && s.thickness->eval({}) < 0)
         failAt(p.locationOf("thickness"), "thickness must be >= 0 nm, got ", s.thickness->eval({}));
     for (int i = 1; i <= 8; ++i) {
         const std::string base = "layer" + std::to_string(i);
-        const bool hasIor = p.has(base + "_ior") || p.has(base + "_cauchy_a") || p.has(base + "_sellmeier_b");
-        if (!hasIor) {
+        if (!iorGiven(p, base + "_ior")) {
             if (p.has(base + "_thickness") || p.has(base + "_k"))
                 failAt(p.location(), base, "_ior is required when ", base, "_thickness or ", base, "_k is given");
             break;
         }
         ExtraLayer l;
-        l.ior = IorSpec::fromIOR(readIOR(p, base, "1.5"));
-        l.k = IorSpec::fromProperties(p, base + "_k", 0.0f);
-        checkPositive(p, base + "_ior", l.ior, false);
-        checkPositive(p, base + "_k", l.k, true);
+        l.ior = readIOR(p, base + "_ior", IOR::constant(1.5f));
+        l.k = readExtinction(p, base + "_k", 0.0f);
         l.thicknessNm = p.getFloat(base + "_thickness");
         if (!(l.thicknessNm >= 0)) failAt(p.locationOf(base + "_thickness"), base, "_thickness must be >= 0 nm");
         s.extra.push_back(l);
     }
-    const std::string etaStr(etaName);
-    if (!kName && etaStr.size() > 4 && etaStr.compare(etaStr.size() - 4, 4, "_ior") == 0)
-        s.substrateEta = IorSpec::fromIOR(readIOR(p, etaStr.substr(0, etaStr.size() - 4), std::to_string(defSubstrateEta)));
-    else
-        s.substrateEta = IorSpec::fromProperties(p, etaName, defSubstrateEta);
-    checkPositive(p, etaName, s.substrateEta, false);
+    s.substrateEta = readIOR(p, etaName, IOR::constant(defSubstrateEta));
     if (kName && p.has("substrate_material")) {
         if (p.has(etaName) || p.has(kName))
             failAt(p.locationOf("substrate_material"), "give either substrate_material or ", etaName, "/", kName, ", not both");
@@ -124,13 +60,12 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
             failAt(p.locationOf("substrate_material"), e.what());
         }
         if (c.mirror()) failAt(p.locationOf("substrate_material"), "substrate_material 'none' (perfect mirror) has no index");
-        s.substrateEta = IorSpec(c.eta);
-        s.substrateK = IorSpec(c.k);
+        s.substrateEta = IOR::tabulated(c.eta);
+        s.substrateK = IOR::tabulated(c.k);
     } else if (kName) {
-        s.substrateK = IorSpec::fromProperties(p, kName, defSubstrateK);
-        checkPositive(p, kName, s.substrateK, true);
+        s.substrateK = readExtinction(p, kName, defSubstrateK);
     } else {
-        s.substrateK = IorSpec(0.0f);
+        s.substrateK = IOR::constant(0.0f);
     }
 
     const std::string mode = p.getString("phase_mode", "exact");
@@ -152,7 +87,7 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
         if (s.mode != FilmPhaseMode::Exact)
             failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' integrates the exact Airy sum; use phase_mode 'exact'");
         for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f)
-            if (s.filmK.at(l) != 0)
+            if (s.filmK.eval(l) != 0)
                 failAt(p.locationOf("film_k"), "rgb_mode 'belcour_barla' needs a non-absorbing film (film_k = 0)");
     }
     return s;
@@ -179,14 +114,14 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
         if (!rgb_ || (wl.lambda(0) == l[0] && wl.lambda(1) == l[1] && wl.lambda(2) == l[2])) rint_ = spec.rintCache.get();
     }
     // Every index spectrum sampled once for all wavelengths (IOR::sample is per spectrum, not per entry).
-    const SampledSpectrum filmN = spec.filmIor.sampleAll(wl), filmK = spec.filmK.sampleAll(wl);
-    const SampledSpectrum subN = spec.substrateEta.sampleAll(wl), subK = spec.substrateK.sampleAll(wl);
+    const SampledSpectrum filmN = spec.filmIor.sample(wl), filmK = spec.filmK.sample(wl);
+    const SampledSpectrum subN = spec.substrateEta.sample(wl), subK = spec.substrateK.sample(wl);
     SampledSpectrum* extra = nullptr;  // layer j: extra[2j] index, extra[2j + 1] extinction
     if (nExtra_ > 0) {
         extra = static_cast<SampledSpectrum*>(arena.allocate(sizeof(SampledSpectrum) * 2 * nExtra_, alignof(SampledSpectrum)));
         for (int j = 0; j < nExtra_; ++j) {
-            new (extra + 2 * j) SampledSpectrum(spec.extra[j].ior.sampleAll(wl));
-            new (extra + 2 * j + 1) SampledSpectrum(spec.extra[j].k.sampleAll(wl));
+            new (extra + 2 * j) SampledSpectrum(spec.extra[j].ior.sample(wl));
+            new (extra + 2 * j + 1) SampledSpectrum(spec.extra[j].k.sample(wl));
         }
     }
     for (int k = 0; k < n_; ++k) {
@@ -206,10 +141,10 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
       thickness_(sanitizeThickness(spec.thickness->eval(q))) {
     for (int k = 0; k < n_; ++k) {
         lambda_[k] = lambdas[k];
-        film_[k] = complexd(spec.filmIor.at(lambdas[k]), spec.filmK.at(lambdas[k]));
-        substrate_[k] = complexd(spec.substrateEta.at(lambdas[k]), spec.substrateK.at(lambdas[k]));
+        film_[k] = complexd(spec.filmIor.eval(lambdas[k]), spec.filmK.eval(lambdas[k]));
+        substrate_[k] = complexd(spec.substrateEta.eval(lambdas[k]), spec.substrateK.eval(lambdas[k]));
     }
-    init(spec, arena, [&](int j, int k) { return complexd(spec.extra[j].ior.at(lambdas[k]), spec.extra[j].k.at(lambdas[k])); });
+    init(spec, arena, [&](int j, int k) { return complexd(spec.extra[j].ior.eval(lambdas[k]), spec.extra[j].k.eval(lambdas[k])); });
 }
 
 template <typename ExtraIorAt>

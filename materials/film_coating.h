@@ -1,5 +1,5 @@
-// A thin-film coating as materials use it: the scene-level description (indices as spectra or
-// per-channel triples, thickness texture, extra layers, substrate, phase mode) and its per-path
+// A thin-film coating as materials use it: the scene-level description (indices as IORs,
+// spectral/ior.h; thickness texture, extra layers, substrate, phase mode) and its per-path
 // instance with the complex indices at the path's wavelengths, which evaluates the exact stack
 // reflectance / transmittance (spectral/film_stack.h) at any angle. Parameters: docs/thin_film.md.
 #pragma once
@@ -11,47 +11,13 @@
 #include "core/arena.h"
 #include "core/properties.h"
 #include "materials/textures/texture.h"
-#include "spectral/dispersion.h"
-#include "spectral/channel_lerp.h"
 #include "spectral/film_airy_batch.h"
 #include "spectral/film_stack.h"
+#include "spectral/ior.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
 
 namespace iris {
-
-/// An index of refraction given as a spectrum, or as a per-channel triple at channel wavelengths
-/// (RGB mode: the triple itself, unchanged; spectral mode: piecewise-linear through the triple
-/// across the channel wavelengths, constant outside).
-class IorSpec {
-public:
-    IorSpec() = default;
-    explicit IorSpec(float c) : values_(c) {}
-    explicit IorSpec(SpectrumPtr s) : spectrum_(std::move(s)) {}
-    /// A dielectric index read by spectral/dispersion.h readIOR (presets, Cauchy, Sellmeier, ...).
-    static IorSpec fromIOR(const IOR& ior);
-    /// Read `name` (float, rgb triple or spectrum) from p; `def` when absent.
-    static IorSpec fromProperties(const Properties& p, const std::string& name, float def,
-                                  const vec3& channelLambdas = vec3(645.0f, 525.0f, 445.0f));
-    /// Value for entry k of a path's wavelengths.
-    float sample(const SampledWavelengths& wl, int k) const;
-    /// Values for every entry of a path's wavelengths.
-    SampledSpectrum sampleAll(const SampledWavelengths& wl) const;
-    /// Value at a wavelength (per-channel triples interpolated).
-    float at(float lambda) const;
-
-private:
-    /// A constant, or a triple of equal values (when not a spectrum): exactly values_[0] at every
-    /// wavelength, not a lerp of it (whose rounding made e.g. substrate_eta = 1.4 look dispersive).
-    bool constantValue() const { return !perChannel_ || (values_[0] == values_[1] && values_[1] == values_[2]); }
-
-    bool perChannel_ = false;
-    vec3 values_{1.0f};
-    vec3 lambdas_{645.0f, 525.0f, 445.0f};
-    ChannelLerp lerp_;  // per-channel triples: the values across lambdas_
-    SpectrumPtr spectrum_;
-    std::shared_ptr<const IOR> ior_;
-};
 
 struct AiryAngle;  // spectral/film_airy.h
 
@@ -61,14 +27,14 @@ enum class FilmRGBMode { Point, BelcourBarla };
 /// Scene-level description of a coating (shared by thinfilm and iridescent_diffuse).
 struct FilmCoatingSpec {
     float extIor = 1.0f;  // incident (exterior) medium, real
-    IorSpec filmIor{1.5f}, filmK{0.0f};
+    IOR filmIor = IOR::constant(1.5f), filmK = IOR::constant(0.0f);
     FloatTexturePtr thickness;  // nm
     struct ExtraLayer {
-        IorSpec ior, k;
+        IOR ior, k;
         float thicknessNm = 0;
     };
     std::vector<ExtraLayer> extra;  // below the film, top → bottom
-    IorSpec substrateEta{1.5f}, substrateK{0.0f};
+    IOR substrateEta = IOR::constant(1.5f), substrateK = IOR::constant(0.0f);
     FilmPhaseMode mode = FilmPhaseMode::Exact;
     int bounces = 1;
     FilmRGBMode rgbMode = FilmRGBMode::Point;
@@ -83,16 +49,15 @@ struct FilmCoatingSpec {
     };
     std::shared_ptr<const RintCache> rintCache;
     /// Fill rintCache (only when the thickness is a constant texture; otherwise a no-op).
-    void precomputeInternalReflectance(const vec3& rgbLambdas = vec3(645.0f, 525.0f, 445.0f));
+    void precomputeInternalReflectance(const vec3& rgbLambdas = defaultChannelWavelengths());
 
     /// Read the coating parameters (film_ior, film_k, thickness, layerN_ior/_k/_thickness,
-    /// where film_ior and layerN_ior accept every form of spectral/dispersion.h readIOR —
-    /// float, preset name, rgb, spectrum, <prefix>_cauchy_a/_b, <prefix>_sellmeier_b/_c —,
     /// phase_mode, bounces, rgb_mode, ext_ior) and the substrate's (by default substrate_eta,
-    /// substrate_k with the given defaults). Throws a located iris::Error on invalid values.
-    /// `etaName`/`kName` name the substrate's parameters (kName = nullptr: a real substrate, k = 0,
-    /// and an etaName of the form "<prefix>_ior" is read with readIOR, e.g. "int_ior").
-    /// With a kName, `substrate_material` may instead name a conductor preset (conductor_presets.h).
+    /// substrate_k with the given defaults). Every index is read by spectral/ior_params.h (the
+    /// indices with IorQuantity::Index, the `_k` with Extinction). Throws a located iris::Error
+    /// on invalid values. `etaName`/`kName` name the substrate's parameters (kName = nullptr: a
+    /// real substrate, k = 0, e.g. etaName "int_ior"). With a kName, `substrate_material` may
+    /// instead name a conductor preset (conductor_presets.h).
     static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                           float defThickness = 300.0f, const char* etaName = "substrate_eta",
                                           const char* kName = "substrate_k");

@@ -7,10 +7,10 @@
 // Mitsuba plugin "granier". Parameters (see docs/thesis_models.md for the readings chosen):
 //   n0           vector   top (film) normal in the local shading frame        default (0,0,1)
 //   n1           vector   base normal in the local shading frame              default (0,0,1)
-//   eta_i        float    index of the outside medium                         default 1.0
-//   eta_t        rgb|spectrum  film index per channel                         default (1.5,1.6,1.8)
+//   eta_i        float|preset name  index of the outside medium               default 1.0
+//   eta_t        any IOR form  film index per channel (materials/thesis_channels.h)  default (1.5,1.6,1.8)
 //   thickness    float|texture film thickness d in nm                         default 76
-//   wavelengths  rgb      λ of each channel in nm                              default (645,525,445)
+//   wavelengths  rgb      λ of each channel in nm                   default defaultChannelWavelengths()
 //   e0, e1       float    Phong exponents of the outer / inner reflection     default 130, 130
 //   ws, wd       spectrum|texture weights of the dielectric / diffuse part    default 0.5, 0.5
 //
@@ -159,12 +159,8 @@ public:
         n0_ = glm::normalize(n0_);
         n1_ = glm::normalize(n1_);
         if (n0_.z <= 0 || n1_.z <= 0) failAt(p.location(), "granier: n0 and n1 must point into the upper hemisphere (z > 0)");
-        etaI_ = p.getFloat("eta_i", 1.0f);
-        lambdas_ = p.getRGB("wavelengths", thesisDefaultWavelengths());
-        for (int c = 0; c < 3; ++c)
-            if (!(lambdas_[c] > 0)) failAt(p.locationOf("wavelengths"), "granier: wavelengths must be positive (nm)");
-        etaT_ = ChannelIOR::fromProperties(p, "eta_t", vec3(1.5f, 1.6f, 1.8f), lambdas_);
-        if (!(etaI_ > 0) || !(etaT_.minValue() > 0)) failAt(p.location(), "granier: indices of refraction must be positive");
+        etaI_ = readConstantIOR(p, "eta_i", 1.0f);
+        channels_ = ThesisChannels::read(p, "granier", vec3(1.5f, 1.6f, 1.8f));
         thickness_ = getFloatTexture(p, "thickness", 76.0f);
         if (thickness_->isConstant() && !(thickness_->eval({}) >= 0))
             failAt(p.locationOf("thickness"), "granier: thickness must be >= 0 nm, got ", thickness_->eval({}));
@@ -183,17 +179,17 @@ public:
         q.e0 = e0_;
         q.e1 = e1_;
         q.d = std::max(0.0f, thickness_->eval(sp.tex));
-        q.etaT = etaT_.sample(wl);
-        q.lambda = channelLambdas(wl, lambdas_);
+        q.etaT = channels_.etaT.sample(channels_.of(wl));
+        q.lambda = channels_.lambdasOf(wl);
         q.ws = ws_->eval(sp.tex, wl);
         q.wd = wd_->eval(sp.tex, wl);
         return arena.make<GranierBSDF>(q);
     }
 
 private:
-    vec3 n0_, n1_, lambdas_;
+    vec3 n0_, n1_;
     float etaI_, e0_, e1_;
-    ChannelIOR etaT_;
+    ThesisChannels channels_;
     FloatTexturePtr thickness_;
     SpectrumTexturePtr ws_, wd_;
 };

@@ -23,7 +23,7 @@ public:
     }
 
     Frame shadingFrame(const ShadingPoint& sp) const override {
-        static const SampledWavelengths rgbWl = SampledWavelengths::rgb(vec3(645.0f, 525.0f, 445.0f));
+        static const SampledWavelengths rgbWl = SampledWavelengths::rgb(defaultChannelWavelengths());
         const SampledSpectrum c = map_->eval(sp.tex, rgbWl);
         const vec3 nTs(2.0f * c[0] - 1.0f, 2.0f * c[1] - 1.0f, 2.0f * c[2] - 1.0f);
         ShadingPoint perturbed = sp;

@@ -4,12 +4,13 @@
 //   diffuse:  ρ' (1 − F(μi)) (1 − F(μo)) / (π η²),  ρ' = ρ/(1 − Fdr) or ρ/(1 − ρ Fdr) (nonlinear)
 //   Fdr = 1 − (1/η²) 2∫₀¹ (1 − F(μ, η)) μ dμ (internal diffuse reflectance, by reciprocity).
 //
-// Parameters: int_ior (1.49), ext_ior (1.000277), diffuse_reflectance (0.5),
+// Parameters: int_ior (1.49), ext_ior (1.000277) (floats or preset names), diffuse_reflectance (0.5),
 // specular_reflectance (1.0), nonlinear (false).
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -71,8 +72,8 @@ private:
 class PlasticMaterial final : public Material {
 public:
     explicit PlasticMaterial(const Properties& p) {
-        const float intIor = p.getFloat("int_ior", 1.49f), extIor = p.getFloat("ext_ior", 1.000277f);
-        if (!(intIor > 0) || !(extIor > 0)) failAt(p.location(), "plastic: int_ior and ext_ior must be positive");
+        // Mitsuba 3's defaults "polypropylene" and "air"; a float or a preset name (spectral/ior_params.h).
+        const float intIor = readConstantIOR(p, "int_ior", 1.49f), extIor = readConstantIOR(p, "ext_ior", 1.000277f);
         eta_ = intIor / extIor;
         // Fdr = 1 − Td with Td = (1/η²) 2∫(1 − F)μ dμ (α = 0 path of the integrator: no tables).
         fdr_ = float(1.0 - roughInternalDiffuseIntegral(MicrofacetType::Beckmann, eta_, 0.0, 1, 128));

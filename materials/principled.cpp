@@ -26,14 +26,18 @@
 // F_s(cosθv), 0.25 clearcoat F_r(cosθv).
 //
 // Mitsuba 3 parameter names: base_color, roughness, anisotropic, metallic, specular, spec_tint,
-// sheen, sheen_tint, clearcoat, clearcoat_gloss (Mitsuba defaults); `subsurface` (Burley's name,
-// not in Mitsuba 3's principled) and `specular_tint` (Burley's name, alias of spec_tint).
+// sheen, sheen_tint, clearcoat, clearcoat_gloss (Mitsuba defaults); `eta` instead of `specular`
+// (a float or an IOR preset name, spectral/ior_params.h), read as Mitsuba 3 relates the two,
+// 0.08 specular = ((η − 1)/(η + 1))²; `subsurface` (Burley's name, not in Mitsuba 3's principled)
+// and `specular_tint` (Burley's name, alias of spec_tint).
 #include "core/registry.h"
 #include "core/sampling.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/principled_terms.h"
+#include "materials/fresnel.h"
 #include "materials/textures/texture_params.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -181,13 +185,26 @@ private:
     /// Rec.709 luminance of the base colour's RGB value (see the file comment).
     float baseLuminance(const TextureQuery& q, const SampledWavelengths& wl, const SampledSpectrum& base) const {
         if (wl.isRGB()) return principled::luminance(vec3(base[0], base[1], base[2]));
-        static const SampledWavelengths rgbWl = SampledWavelengths::rgb(vec3(645.0f, 525.0f, 445.0f));
+        static const SampledWavelengths rgbWl = SampledWavelengths::rgb(defaultChannelWavelengths());
         const SampledSpectrum rgb = clampZero(t_.baseColor->eval(q, rgbWl));
         return principled::luminance(vec3(rgb[0], rgb[1], rgb[2]));
     }
 
     Textures t_;
 };
+
+/// `specular` from Mitsuba 3's `eta`: the same normal-incidence reflectance, 0.08 specular =
+/// ((η − 1)/(η + 1))² (Mitsuba 3, src/bsdfs/principled.cpp: eta and specular are in one-to-one
+/// correspondence and exclude each other).
+FloatTexturePtr specularFromEta(const Properties& p) {
+    if (p.has("specular")) failAt(p.locationOf("eta"), "principled: give either 'eta' or 'specular', not both");
+    const float eta = readConstantIOR(p, "eta", 1.5f);
+    const float specular = schlickF0FromEta(eta) / 0.08f;
+    if (!(specular <= 1.0f))
+        failAt(p.locationOf("eta"), "principled: eta = ", eta, " needs specular = ", specular, " > 1, beyond this model's ",
+               "range (0.08 specular is its largest normal-incidence reflectance; eta in [0.559, 1.788])");
+    return std::make_shared<ConstantFloatTexture>(specular);
+}
 
 std::shared_ptr<Material> createPrincipled(const Properties& p) {
     auto unitParam = [&](const std::string& name, float def) {
@@ -200,7 +217,7 @@ std::shared_ptr<Material> createPrincipled(const Properties& p) {
     t.baseColor = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
     t.subsurface = unitParam("subsurface", 0.0f);
     t.metallic = unitParam("metallic", 0.0f);
-    t.specular = unitParam("specular", 0.5f);
+    t.specular = p.has("eta") ? specularFromEta(p) : unitParam("specular", 0.5f);
     if (p.has("spec_tint") && p.has("specular_tint"))
         failAt(p.locationOf("specular_tint"), "principled: give either 'spec_tint' or its alias 'specular_tint', not both");
     t.specularTint = unitParam(p.has("specular_tint") ? "specular_tint" : "spec_tint", 0.0f);

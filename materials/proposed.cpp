@@ -16,8 +16,9 @@
 // n0) or a cosine lobe about n1, mixed with the probabilities of materials/thesis_rough_coat.h.
 //
 // Parameters (defaults: thesis Table 4.2):
-//   n0, n1 (vector, (0,0,1)), eta_i (1.0), eta_t (rgb|spectrum, (1.8,1.7,1.6)), thickness
-//   (float|texture nm, 1000), wavelengths (rgb nm, (645,525,445)), alpha (float|texture, 0.08),
+//   n0, n1 (vector, (0,0,1)), eta_i (float|preset name, 1.0), eta_t (any IOR form, (1.8,1.7,1.6);
+//   materials/thesis_channels.h), thickness (float|texture nm, 1000), wavelengths (rgb nm,
+//   defaultChannelWavelengths()), alpha (float|texture, 0.08),
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
 #include <cstddef>
@@ -211,13 +212,10 @@ public:
         tilted1_ = !(n1_.x == 0 && n1_.y == 0);
         coat_ = Frame::fromNormal(n0);
         base_ = Frame::fromNormal(n1_);
-        etaI_ = p.getFloat("eta_i", 1.0f);
-        lambdas_ = p.getRGB("wavelengths", thesisDefaultWavelengths());
-        for (int c = 0; c < 3; ++c)
-            if (!(lambdas_[c] > 0)) failAt(p.locationOf("wavelengths"), "proposed: wavelengths must be positive (nm)");
-        etaT_ = ChannelIOR::fromProperties(p, "eta_t", vec3(1.8f, 1.7f, 1.6f), lambdas_);
-        if (!(etaI_ > 0)) failAt(p.location(), "proposed: eta_i must be positive");
-        const float lo = etaT_.minValue() / etaI_, hi = etaT_.maxValue() / etaI_;
+        etaI_ = readConstantIOR(p, "eta_i", 1.0f);
+        channels_ = ThesisChannels::read(p, "proposed", vec3(1.8f, 1.7f, 1.6f));
+        const IOR::Range etaT = channels_.etaT.range();
+        const float lo = etaT.min / etaI_, hi = etaT.max / etaI_;
         if (lo < RoughTransmittanceTables::kEtaMin || hi > RoughTransmittanceTables::kEtaMax)
             failAt(p.location(), "proposed: eta_t/eta_i must lie in the tabulated range [", RoughTransmittanceTables::kEtaMin,
                    ", ", RoughTransmittanceTables::kEtaMax, "], got [", lo, ", ", hi, "]");
@@ -252,8 +250,9 @@ public:
             atAlpha_.emplace(*tables_, std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax));
             const int nMu = atAlpha_->nMu();
             rgbLines_.assign(size_t(3) * nMu, 0.0f);
+            const SampledSpectrum rgbEtaT = channels_.etaT.sample(channels_.rgb);
             for (int k = 0; k < 3; ++k)
-                rgbFdr_[k] = 1.0f - atAlpha_->collapse(etaT_.channel(k) / etaI_, &rgbLines_[size_t(k) * nMu]);  // eq. 3.19
+                rgbFdr_[k] = 1.0f - atAlpha_->collapse(rgbEtaT[k] / etaI_, &rgbLines_[size_t(k) * nMu]);  // eq. 3.19
         }
     }
 
@@ -288,11 +287,9 @@ public:
         auto* ch = reinterpret_cast<Channel*>(block);
         float eta[kMaxWavelengths], wdC[kMaxWavelengths];
         float wsSum = 0.0f, wdSum = 0.0f;  // in channel order, as SampledSpectrum::average
-        const bool rgb = wl.isRGB();
+        const SampledWavelengths& cw = channels_.of(wl);  // the wavelengths the channels stand for
         for (int c = 0; c < n; ++c) {
-            // η_t and λ of the channel: ChannelIOR::sample and channelLambdas, entry c
-            const float etaT = rgb ? etaT_.channel(c) : etaT_.at(wl.lambda(c));
-            const float lambda = rgb ? lambdas_[c] : wl.lambda(c);
+            const float etaT = channels_.etaT.at(cw, c), lambda = cw.lambda(c);  // η_t and λ of the channel
             eta[c] = etaT / etaI_;
             const float inv = 1.0f / eta[c];
             ch[c].eta = eta[c];
@@ -351,10 +348,10 @@ private:
     }
 
     Frame coat_, base_;
-    vec3 n1_, lambdas_;
+    vec3 n1_;
     bool tilted0_, tilted1_;
     float etaI_;
-    ChannelIOR etaT_;
+    ThesisChannels channels_;
     FloatTexturePtr thickness_, alpha_;
     MicrofacetType type_;
     SpectrumTexturePtr ws_, wd_;

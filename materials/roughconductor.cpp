@@ -67,31 +67,27 @@ private:
 
 class RoughConductorMaterial final : public Material {
 public:
-    RoughConductorMaterial(MicrofacetParams mp, ConductorSpectra c, SpectrumTexturePtr scale)
+    RoughConductorMaterial(MicrofacetParams mp, ConductorIOR c, SpectrumTexturePtr scale)
         : mp_(std::move(mp)), c_(std::move(c)), scale_(std::move(scale)) {}
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
-        SampledSpectrum eta(wl.size()), k(wl.size());
-        if (!c_.mirror()) {
-            eta = c_.eta->sample(wl) / c_.extIOR;
-            k = c_.k->sample(wl) / c_.extIOR;
-        }
-        return arena.make<RoughConductorBSDF>(mp_.at(sp.tex), eta, k, scale_->eval(sp.tex, wl), c_.mirror());
+        SampledSpectrum eta, k;
+        c_.sample(wl, &eta, &k);
+        return arena.make<RoughConductorBSDF>(mp_.at(sp.tex), eta, k, scale_->eval(sp.tex, wl), c_.mirror);
     }
 
 private:
     MicrofacetParams mp_;
-    ConductorSpectra c_;
+    ConductorIOR c_;
     SpectrumTexturePtr scale_;
 };
 
 std::shared_ptr<Material> createRoughConductor(const Properties& p) {
     MicrofacetParams mp = MicrofacetParams::read(p, "beckmann", 0.1f);
-    ConductorSpectra c = readConductor(p);
+    ConductorIOR c = readConductor(p);
     for (const auto& [t, name] : {std::pair{mp.alphaU.get(), p.has("alpha_u") ? "alpha_u" : "alpha"},
                                   std::pair{mp.alphaV.get(), p.has("alpha_v") ? "alpha_v" : "alpha"}})
         if (t->isConstant() && !(t->eval({}) >= 0))
             failAt(p.locationOf(name), "roughconductor: ", name, " must be >= 0, got ", t->eval({}));
-    if (!(c.extIOR > 0)) failAt(p.locationOf("ext_ior"), "roughconductor: ext_ior must be > 0, got ", c.extIOR);
     return std::make_shared<RoughConductorMaterial>(
         std::move(mp), std::move(c), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f));
 }

@@ -9,16 +9,16 @@
 // reflection with probability F(wo·m) else refraction; pdf = pm(m) · {F/(4|wo·m|) ,
 // (1−F) η_i²|wi·m| / (η_o (wo·m) + η_i (wi·m))²} (Walter eqs. 14, 17).
 // Mitsuba 3 plugin "roughdielectric": distribution ("beckmann"), alpha (0.1), alpha_u/alpha_v,
-// sample_visible (true), int_ior ("bk7"), ext_ior ("air"), specular_reflectance,
+// sample_visible (true), int_ior ("bk7"), ext_ior ("air") (spectral/ior_params.h), specular_reflectance,
 // specular_transmittance (1); plus masking / beckmann_rational_g1 (materials/microfacet.h).
 // Wavelength dependence as in "dielectric": one η (hero or green channel) decides m and the
 // Jacobians; the Fresnel factor uses each channel's own η.
 #include "core/registry.h"
-#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/textures/texture_params.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -128,15 +128,11 @@ private:
 
 std::shared_ptr<Material> createRoughDielectric(const Properties& p) {
     MicrofacetParams mp = MicrofacetParams::read(p, "beckmann", 0.1f);
-    IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
+    auto [in, ext] = readInterfaceIOR(p);
     for (const auto& [t, name] : {std::pair{mp.alphaU.get(), p.has("alpha_u") ? "alpha_u" : "alpha"},
                                   std::pair{mp.alphaV.get(), p.has("alpha_v") ? "alpha_v" : "alpha"}})
         if (t->isConstant() && !(t->eval({}) >= 0))
             failAt(p.locationOf(name), "roughdielectric: ", name, " must be >= 0, got ", t->eval({}));
-    for (float l = kLambdaMin; l <= kLambdaMax; l += 10.0f)  // indices must be positive over the whole range
-        if (!(in.eval(l) > 0) || !(ext.eval(l) > 0))
-            failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "roughdielectric: int_ior and ext_ior must be > 0, got ",
-                   in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
     return std::make_shared<RoughDielectricMaterial>(
         std::move(mp), std::move(in), std::move(ext),
         getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),

@@ -6,7 +6,7 @@
 // Parameters (Mitsuba names):
 //   distribution          "beckmann" | "ggx"                       default beckmann
 //   alpha                 float | texture, roughness in [0, 1]     default 0.1
-//   int_ior, ext_ior      float, η = int_ior/ext_ior ∈ [1, 3]      default 1.49, 1.000277
+//   int_ior, ext_ior      float | preset name, η = int/ext ∈ [1, 3]  default 1.49, 1.000277
 //   diffuse_reflectance   spectrum | texture (base albedo ρ)       default 0.5
 //   specular_reflectance  spectrum | texture (ks)                  default 1.0
 //   nonlinear             bool (ρ/(1−ρFdr) instead of ρ/(1−Fdr))   default false
@@ -14,6 +14,7 @@
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -104,8 +105,8 @@ public:
             failAt(p.locationOf("distribution"), "roughplastic: ", e.what());
         }
         alpha_ = getFloatTexture(p, "alpha", 0.1f);
-        const float intIor = p.getFloat("int_ior", 1.49f), extIor = p.getFloat("ext_ior", 1.000277f);
-        if (!(intIor > 0) || !(extIor > 0)) failAt(p.location(), "roughplastic: int_ior and ext_ior must be positive");
+        // Mitsuba 3's defaults "polypropylene" and "air"; a float or a preset name (spectral/ior_params.h).
+        const float intIor = readConstantIOR(p, "int_ior", 1.49f), extIor = readConstantIOR(p, "ext_ior", 1.000277f);
         eta_ = intIor / extIor;
         if (eta_ < RoughTransmittanceTables::kEtaMin || eta_ > RoughTransmittanceTables::kEtaMax)
             failAt(p.location(), "roughplastic: int_ior/ext_ior = ", eta_, " is outside the tabulated range [",

@@ -2,14 +2,15 @@
 // parallel and close together, so light either reflects or passes straight through (no
 // refraction offset). Summing the internal bounces (geometric series) gives
 //   R' = R + T² R / (1 − R²),  T' = 1 − R'   (R = single-interface Fresnel, T = 1 − R).
-// Parameters: int_ior ("bk7"), ext_ior ("air"), specular_reflectance, specular_transmittance (1).
+// Parameters: int_ior ("bk7"), ext_ior ("air") (any form of spectral/ior_params.h),
+// specular_reflectance, specular_transmittance (1).
 // The lobe is chosen with the mean of R' over the wavelengths; no wavelength termination is
 // needed since directions do not depend on η.
 #include "core/registry.h"
-#include "spectral/dispersion.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
+#include "spectral/ior_params.h"
 
 namespace iris {
 namespace {
@@ -64,11 +65,7 @@ private:
 };
 
 std::shared_ptr<Material> createThinDielectric(const Properties& p) {
-    IOR in = readIOR(p, "int", "bk7"), ext = readIOR(p, "ext", "air");
-    for (float l = kLambdaMin; l <= kLambdaMax; l += 10.0f)  // indices must be positive over the whole range
-        if (!(in.eval(l) > 0) || !(ext.eval(l) > 0))
-            failAt(p.locationOf(in.eval(l) > 0 ? "ext_ior" : "int_ior"), "thindielectric: int_ior and ext_ior must be > 0, got ",
-                   in.eval(l), " and ", ext.eval(l), " at ", l, " nm");
+    auto [in, ext] = readInterfaceIOR(p);
     return std::make_shared<ThinDielectricMaterial>(
         std::move(in), std::move(ext), getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f),
         getSpectrumTexture(p, "specular_transmittance", SpectrumKind::Reflectance, 1.0f));

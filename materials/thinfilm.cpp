@@ -310,10 +310,10 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
     if (transmission) {
         const SourceLocation loc = p.locationOf("transmission");
         if (substrate != "dielectric") failAt(loc, "transmission needs substrate = 'dielectric'");
-        const float eta0 = spec.substrateEta.at(kLambdaMin);
+        const float eta0 = spec.substrateEta.eval(kLambdaMin);
         for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f) {
-            if (spec.substrateK.at(l) != 0) failAt(loc, "transmission needs a non-absorbing substrate (substrate_k = 0)");
-            if (spec.substrateEta.at(l) != eta0)
+            if (spec.substrateK.eval(l) != 0) failAt(loc, "transmission needs a non-absorbing substrate (substrate_k = 0)");
+            if (spec.substrateEta.eval(l) != eta0)
                 failAt(loc, "transmission needs a non-dispersive substrate_eta (directions would depend on λ)");
         }
         if (spec.rgbMode == FilmRGBMode::BelcourBarla)

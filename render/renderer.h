@@ -21,7 +21,7 @@ struct RenderOptions {
     int threads = 0;               // 0 = all cores
     bool rgbMode = false;          // RGB mode: 3 fixed wavelengths, values are linear Rec.709
     int spectralSamples = 4;       // N wavelengths per path in spectral mode
-    vec3 rgbWavelengths{645.0f, 525.0f, 445.0f};
+    vec3 rgbWavelengths = defaultChannelWavelengths();
     bool uniformWavelengths = false;  // ablation: uniform instead of visible-importance wavelength pdf
     bool progress = false;         // progress bar with ETA on stderr
     std::string checkpointPath;    // "" = no checkpoints

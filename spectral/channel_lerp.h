@@ -1,9 +1,11 @@
 // Piecewise-linear interpolation through three (λ, value) points: a parameter given per RGB channel
 // at the wavelengths the channels stand for, read at any wavelength in spectral mode (constant
 // outside the channel wavelengths' range; the spectral reading of the thesis' per-channel η_t,
-// thesis 000 §2.4 / §3.2, see materials/thesis_channels.h). Used by the thesis models' per-channel indices
-// (materials/thesis_channels.h) and by the thin-film coating's indices (materials/film_coating.h).
-// The points are sorted once, when the parameter is read, not at every evaluation.
+// thesis 000 §2.4 / §3.2, see materials/thesis_channels.h). The one interpolation of per-channel
+// indices: IOR::perChannel (spectral/ior.h) uses it for every material.
+// The points are sorted once, when the parameter is read, not at every evaluation. Between two
+// equal neighbours it returns their value exactly ((1 − t)a + ta may differ from a by rounding,
+// which made e.g. an index of 1.4 in all three channels look dispersive).
 #pragma once
 
 #include <algorithm>
@@ -32,7 +34,7 @@ public:
         if (lambda >= l_[2]) return v_[2];
         const int k = lambda <= l_[1] ? 0 : 1;
         const float span = l_[k + 1] - l_[k];
-        if (!(span > 0)) return v_[k + 1];
+        if (!(span > 0) || v_[k] == v_[k + 1]) return v_[k + 1];
         return lerp((lambda - l_[k]) / span, v_[k], v_[k + 1]);
     }
 

@@ -27,10 +27,7 @@ constexpr int kReflectanceWeightCount = 471;
 /// The RGB-mode value of a spectrum given as a function of wavelength:
 ///   Reflectance: RGB of the reflected D65 light, D65's Y normalised to 1 (so ρ = 1 → (1,1,1));
 ///   Illuminant: plain projection, XYZ = ∫ L cmf / ∫ ȳ, then the matrix above;
-///   Unbounded: f at the default RGB channel wavelengths (645, 525, 445) nm.
+///   Unbounded: f at the default RGB channel wavelengths (defaultChannelWavelengths()).
 vec3 rgbProjection(const std::function<float(float)>& f, SpectrumKind kind);
-
-/// Default RGB-mode channel wavelengths (nm), see spectral/wavelengths.h.
-inline vec3 defaultChannelWavelengths() { return vec3(645.0f, 525.0f, 445.0f); }
 
 }  // namespace iris

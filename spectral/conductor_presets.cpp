@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/source_tree.h"
-#include "spectral/dispersion.h"
+#include "spectral/ior_params.h"
 #include "spectral/spectrum_factory.h"
 #include "spectral/spectrum_params.h"
 
@@ -43,27 +43,28 @@ ConductorSpectra loadConductorPreset(const std::string& name) {
     return s;
 }
 
-ConductorSpectra readConductor(const Properties& p) {
-    ConductorSpectra s;
+ConductorIOR readConductor(const Properties& p) {
+    ConductorIOR s;
     const bool hasEta = p.has("eta"), hasK = p.has("k");
     if (hasEta || hasK) {
         if (p.has("material")) failAt(p.locationOf("material"), "give either 'material' or 'eta'/'k', not both");
         if (!(hasEta && hasK)) failAt(p.location(), p.tag(), " '", p.type(), "': 'eta' and 'k' must be given together");
-        s.eta = getSpectrum(p, "eta", SpectrumKind::Unbounded);
-        s.k = getSpectrum(p, "k", SpectrumKind::Unbounded);
+        s.eta = readIOR(p, "eta", IOR(), IorQuantity::ConductorOptics);
+        s.k = readIOR(p, "k", IOR(), IorQuantity::ConductorOptics);
     } else {
         const std::string name = p.getString("material", "none");
         try {
             const ConductorSpectra preset = loadConductorPreset(name);
-            s.eta = preset.eta;
-            s.k = preset.k;
+            s.mirror = preset.mirror();
+            if (!s.mirror) {
+                s.eta = IOR::tabulated(preset.eta);
+                s.k = IOR::tabulated(preset.k);
+            }
         } catch (const Error& e) {
             failAt(p.locationOf("material"), e.what());
         }
     }
-    const IOR ext = readIOR(p, "ext", "1");
-    if (ext.kind() != IOR::Kind::Constant) failAt(p.locationOf("ext_ior"), "ext_ior of a conductor must be a constant");
-    s.extIOR = ext.eval(550.0f);
+    s.extIOR = readConstantIOR(p, "ext_ior", 1.0f);
     return s;
 }
 

@@ -7,14 +7,32 @@
 #include <vector>
 
 #include "core/properties.h"
+#include "spectral/ior.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
 
+/// A named conductor's measured tables.
 struct ConductorSpectra {
     SpectrumPtr eta, k;  // both null for "none" (perfect mirror)
-    float extIOR = 1.0f; // index of the outside medium (η and κ are divided by it)
     bool mirror() const { return !eta; }
+};
+
+/// A conductor's complex index η + iκ as a material uses it (two IORs, spectral/ior.h) and the
+/// index of the outside medium.
+struct ConductorIOR {
+    IOR eta, k;
+    float extIOR = 1.0f;
+    bool mirror = false;  // "none": a perfect mirror, F = 1
+    /// η/η_ext and κ/η_ext at the path's wavelengths (zero for the mirror).
+    void sample(const SampledWavelengths& wl, SampledSpectrum* etaRel, SampledSpectrum* kRel) const {
+        if (mirror) {
+            *etaRel = *kRel = SampledSpectrum(wl.size());
+            return;
+        }
+        *etaRel = eta.sample(wl) / extIOR;
+        *kRel = k.sample(wl) / extIOR;
+    }
 };
 
 /// Names Mitsuba 3 lists for conductors, plus "none".
@@ -24,11 +42,13 @@ ConductorSpectra loadConductorPreset(const std::string& name);
 /// Folder holding the .spd files.
 std::string conductorDataDir();
 
-/// Read a conductor's optical constants from a scene (Mitsuba parameters):
+/// Read a conductor's optical constants from a scene (Mitsuba parameters), with the IOR reader
+/// (spectral/ior_params.h):
 ///   material  preset name (default "none" when neither eta nor k is given)
-///   eta, k    spectra (float, rgb, spectrum; Unbounded kind) — both or neither
+///   eta, k    IorQuantity::ConductorOptics (float, rgb or spectrum as Mitsuba reads them, ≥ 0) —
+///             both or neither
 ///   ext_ior   float or IOR preset name of the outside medium (default 1; iris extension, the
 ///             thesis uses η_i = 1.00028 for air)
-ConductorSpectra readConductor(const Properties& p);
+ConductorIOR readConductor(const Properties& p);
 
 }  // namespace iris

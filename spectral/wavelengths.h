@@ -14,6 +14,12 @@ namespace iris {
 constexpr float kLambdaMin = 360.0f;  // nm, range of the CIE tables used
 constexpr float kLambdaMax = 830.0f;
 
+/// The wavelengths (nm) the R, G, B channels stand for by default: RGB mode's channel wavelengths
+/// (render option --rgb-wavelengths), the thesis models' `wavelengths` default (thesis 000
+/// Table 3.1) and the channel wavelengths of a per-channel index (spectral/ior.h). The one place
+/// these numbers are written.
+inline vec3 defaultChannelWavelengths() { return vec3(645.0f, 525.0f, 445.0f); }
+
 /// Visible-importance wavelength pdf p(λ) ∝ 1/cosh²(0.0072(λ−538)) on [360, 830] nm
 /// (the fit of pbrt-v4 §4.6.5, "SampleVisibleWavelengths"), normalised on that range.
 float visibleWavelengthPdf(float lambda);

@@ -25,7 +25,7 @@ std::unique_ptr<Instance> make(const std::string& type, std::initializer_list<st
     for (const auto& [k, v] : params) p.set(k, v, SourceLocation{"bench", 0});
     auto inst = std::make_unique<Instance>();
     inst->material = MaterialRegistry::instance().create(p);
-    SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
     inst->bsdf = inst->material->getBSDF(ShadingPoint{}, wl, inst->arena);
     return inst;
 }
@@ -79,7 +79,7 @@ void BM_ShadingPoint(benchmark::State& state) {
     Arena arena;
     for (auto _ : state) {
         SampledWavelengths wl = nSpectral ? SampledWavelengths::sampleVisible(rng.uniform(), nSpectral)
-                                          : SampledWavelengths::rgb(vec3(645, 525, 445));
+                                          : SampledWavelengths::rgb(defaultChannelWavelengths());
         const BSDF* bsdf = inst->material->getBSDF(ShadingPoint{}, wl, arena);
         const vec3 wo = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
         const vec3 wl0 = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));

@@ -689,10 +689,10 @@ def profile_comment(ctx, name, p):
         return txt + "\n"
     if name.startswith("spectral"):
         tf = share(p, FILM_RE)
-        ior = share(p, r"IOR::eval|IorSpec")
+        ior = share(p, r"IOR::|ChannelLerp")
         return (f"The thin-film optics (film stack, Airy, coating, and the complex-arithmetic / libm helpers they call: "
                 f"`__divdc3`, `sincos`, `cexp`, `csqrt`, `hypot`) account for {tf:.0f} % of this profile, the "
-                f"per-wavelength index lookups (`IOR::eval`, `IorSpec`) for {ior:.0f} %. The iridescent materials "
+                f"per-wavelength index lookups (`IOR::eval`, `IOR::sample`, `ChannelLerp`) for {ior:.0f} %. The iridescent materials "
                 "evaluate the film once per wavelength, so their cost grows linearly with N while traversal and the "
                 "rest of the path do not.\n")
     if name.startswith("thesis_proposed"):

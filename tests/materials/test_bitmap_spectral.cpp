@@ -25,7 +25,7 @@ TEST(BitmapSpectral, LargeImageUsesGridAndRoundTrips) {
     TextureQuery q;
     q.uv = vec2(0.37f, 0.61f);
     // RGB mode: the texel unchanged.
-    const SampledSpectrum rgb = tex->eval(q, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    const SampledSpectrum rgb = tex->eval(q, SampledWavelengths::rgb(defaultChannelWavelengths()));
     for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(rgb[k], c[k]);
     // Spectral mode: a proper reflectance whose projection is the texel's RGB.
     auto f = [&](float lambda) {

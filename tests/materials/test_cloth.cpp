@@ -146,7 +146,7 @@ test::BSDFInstance makeCase(const SamplingCase& k) {
                                            {"visibility", std::string(k.vis)},
                                            {"wrap", k.wrap}});
     if (k.subsurface) props->set("subsurface_color", RGBValue{vec3(0.8f, 0.2f, 0.1f)}, SourceLocation{});
-    return test::makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    return test::makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
 }
 
 TEST(ClothSampling, ChiSquareConsistencyAndPdf) {

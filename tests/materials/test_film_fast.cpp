@@ -16,6 +16,7 @@
 #include "spectral/film_airy.h"
 #include "materials/film_coating.h"
 #include "spectral/film_stack.h"
+#include "spectral/ior_params.h"
 #include "tests/support/bsdf_test_util.h"
 
 namespace iris {
@@ -255,8 +256,8 @@ TEST(FilmFastPath, ConstantIndexIsExactAtEveryWavelength) {
     // A float index is a triple of equal values; it must come back unchanged at every λ (a lerp of
     // it rounded, which made substrate_eta = 1.4 fail the non-dispersive check of transmission).
     auto p = test::makeProps("thinfilm", {{"substrate_eta", 1.4f}, {"film_ior", 1.33f}});
-    const IorSpec eta = IorSpec::fromProperties(*p, "substrate_eta", 1.5f);
-    for (float l = 360.0f; l <= 830.0f; l += 0.37f) ASSERT_EQ(eta.at(l), 1.4f) << l;
+    const IOR eta = readIOR(*p, "substrate_eta", IOR::constant(1.5f));
+    for (float l = 360.0f; l <= 830.0f; l += 0.37f) ASSERT_EQ(eta.eval(l), 1.4f) << l;
     p->set("substrate", std::string("dielectric"), {});
     p->set("transmission", true, {});
     EXPECT_NO_THROW(test::makeBSDF(*p, SampledWavelengths::sampleVisible(0.5f, 8)));

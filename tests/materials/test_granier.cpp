@@ -84,7 +84,7 @@ D3 internalMirror(const RefParams& p, const D3& wi, int c) {
 
 TEST(Granier, MatchesIndependentEvaluationTable31) {
     const RefParams r;
-    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(defaultChannelWavelengths()));
     std::vector<std::pair<D3, D3>> pairs;
     const D3 n0 = glm::normalize(r.n0);
     for (double ci : {0.95, 0.7, 0.4}) {
@@ -112,9 +112,9 @@ TEST(Granier, MatchesIndependentEvaluationTable31) {
 
 TEST(Granier, RGBModeIsDeterministicAndSpectralN1MatchesChannels) {
     const RefParams r;
-    auto a = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
-    auto b = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
-    const float lambdas[3] = {645, 525, 445};
+    auto a = makeBSDF(*table31Props(r), SampledWavelengths::rgb(defaultChannelWavelengths()));
+    auto b = makeBSDF(*table31Props(r), SampledWavelengths::rgb(defaultChannelWavelengths()));
+    const vec3 lambdas = defaultChannelWavelengths();
     Pcg32 rng(11, 5);
     for (int k = 0; k < 200; ++k) {
         const vec3 wo = sampleCosineHemisphere(vec2(rng.uniform(), rng.uniform()));
@@ -147,7 +147,7 @@ TEST(Granier, DiffuseOnlyAlbedoIsWeightTimesFd) {
     // ws = 0: the BSDF is the constant wd·fd/π, so the albedo is wd·fd (reading of eq. 2.34).
     RefParams r;
     r.ws = 0;
-    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(defaultChannelWavelengths()));
     const auto alb = albedo(*inst.bsdf, dirFromCos(0.6f), 200000);
     for (int c = 0; c < 3; ++c) {
         const double expected = refGranier(r, D3(0, 0, 1), D3(0, 0, 1), c) * M_PI;
@@ -175,7 +175,7 @@ TEST(Granier, SamplingMatchesPdfChi2) {
                                            {"eta_t", RGBValue{vec3(1.5f, 1.6f, 1.8f)}},
                                            {"e0", 40.0f},  // wider lobe: the χ² grid resolves it
                                            {"e1", 130.0f}});
-        auto inst = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+        auto inst = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
         const vec3 wo = dirFromCos(k.cosO, k.phi);
         const Chi2Result res = chi2Test(*inst.bsdf, wo, opt);
         EXPECT_TRUE(res.passed) << res.message;
@@ -222,7 +222,7 @@ TEST(Granier, ImportanceModeIsTheAdjoint) {
     // Not reciprocal (Fresnel of the light side in eqs. 2.23, 2.27): importance transport must use
     // f*(wo, wi) = f(wi, wo).
     const RefParams r;
-    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto inst = makeBSDF(*table31Props(r), SampledWavelengths::rgb(defaultChannelWavelengths()));
     const D3 wi(-0.6, 0, 0.8);
     const D3 wo = glm::normalize(internalMirror(r, wi, 1) + D3(0.01, 0.01, 0));
     const SampledSpectrum fr = inst.bsdf->eval(vec3(wo), vec3(wi), TransportMode::Radiance);

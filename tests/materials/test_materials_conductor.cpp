@@ -9,7 +9,7 @@ using namespace iris;
 using namespace iris::test;
 
 namespace {
-const SampledWavelengths kRGB = SampledWavelengths::rgb(vec3(645, 525, 445));
+const SampledWavelengths kRGB = SampledWavelengths::rgb(defaultChannelWavelengths());
 }
 
 TEST(MaterialsConductor, PresetsLoad) {

@@ -2,7 +2,8 @@
 // presets and dispersion.
 #include <gtest/gtest.h>
 
-#include "spectral/dispersion.h"
+#include "spectral/ior.h"
+#include "spectral/ior_presets.h"
 #include "materials/fresnel.h"
 #include "tests/support/bsdf_test_util.h"
 
@@ -10,7 +11,7 @@ using namespace iris;
 using namespace iris::test;
 
 namespace {
-const SampledWavelengths kRGB = SampledWavelengths::rgb(vec3(645, 525, 445));
+const SampledWavelengths kRGB = SampledWavelengths::rgb(defaultChannelWavelengths());
 
 /// Probability and weight of each delta lobe of a specular BSDF, found by scanning uc.
 struct Lobes {

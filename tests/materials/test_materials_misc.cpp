@@ -84,7 +84,7 @@ TEST(MaterialsTwoSided, FlipsToTheUpperSide) {
     auto one = makeBSDF("diffuse", {{"reflectance", 0.5f}});
     auto props = makeProps("twosided", {});
     props->addChild(makeProps("diffuse", {{"reflectance", 0.5f}}));
-    auto two = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto two = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
     const vec3 wo = dirFromCos(0.6f, 0.3f), wi = dirFromCos(0.3f, 2.0f);
     const auto flip = [](const vec3& w) { return vec3(w.x, w.y, -w.z); };
     EXPECT_EQ(one.bsdf->eval(flip(wo), flip(wi), TransportMode::Radiance)[0], 0.0f);
@@ -107,7 +107,7 @@ TEST(MaterialsTwoSided, FrontAndBack) {
     auto props = makeProps("twosided", {});
     props->addChild(makeProps("diffuse", {{"reflectance", 0.2f}}));
     props->addChild(makeProps("roughconductor", {{"alpha", 0.3f}}));
-    auto two = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto two = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
     EXPECT_NEAR(albedo(*two.bsdf, dirFromCos(0.5f), 20000)[0].mean, 0.2, 1e-5);
     const auto back = albedo(*two.bsdf, dirFromCos(-0.5f), 20000);
     EXPECT_GT(back[0].mean, 0.8);  // the mirror-like back
@@ -115,13 +115,13 @@ TEST(MaterialsTwoSided, FrontAndBack) {
     EXPECT_TRUE(two.bsdf->flags() & kBSDFDiffuse);
 
     auto none = makeProps("twosided", {});
-    EXPECT_THROW(makeBSDF(*none, SampledWavelengths::rgb(vec3(645, 525, 445))), Error);
+    EXPECT_THROW(makeBSDF(*none, SampledWavelengths::rgb(defaultChannelWavelengths())), Error);
     auto three = makeProps("twosided", {});
     for (int i = 0; i < 3; ++i) three->addChild(makeProps("diffuse", {}));
-    EXPECT_THROW(makeBSDF(*three, SampledWavelengths::rgb(vec3(645, 525, 445))), Error);
+    EXPECT_THROW(makeBSDF(*three, SampledWavelengths::rgb(defaultChannelWavelengths())), Error);
     // A named nested bsdf works too.
     auto named = makeProps("twosided", {{"bsdf", makeProps("diffuse", {{"reflectance", 0.3f}})}});
-    auto n = makeBSDF(*named, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto n = makeBSDF(*named, SampledWavelengths::rgb(defaultChannelWavelengths()));
     EXPECT_NEAR(albedo(*n.bsdf, dirFromCos(-0.5f), 1000)[0].mean, 0.3, 1e-5);
 }
 
@@ -144,7 +144,7 @@ TEST(MaterialsAll, SpectralAndRGBModes) {
     opt.numTests = int(mats.size()) * 3;
     for (const auto& [name, props] : mats) {
         for (int n : {0, 1, 8}) {
-            const SampledWavelengths wl = n == 0 ? SampledWavelengths::rgb(vec3(645, 525, 445)) : SampledWavelengths::sampleVisible(0.61f, n);
+            const SampledWavelengths wl = n == 0 ? SampledWavelengths::rgb(defaultChannelWavelengths()) : SampledWavelengths::sampleVisible(0.61f, n);
             auto inst = makeBSDF(*props, wl);
             ASSERT_NE(inst.bsdf, nullptr) << name;
             const vec3 wo = dirFromCos(0.6f, 0.3f);

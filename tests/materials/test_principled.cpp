@@ -126,7 +126,7 @@ TEST(Principled, SpecularTintUsesLuminanceOfRGB) {
     const vec3 n(0, 0, 1);
     for (bool spectral : {false, true}) {
         const SampledWavelengths wl = spectral ? SampledWavelengths::sampleVisible(0.37f, 8)
-                                               : SampledWavelengths::rgb(vec3(645, 525, 445));
+                                               : SampledWavelengths::rgb(defaultChannelWavelengths());
         auto p1 = test::makeProps("principled", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
                                                  {"spec_tint", 1.0f}});
         auto p0 = test::makeProps("principled", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
@@ -167,7 +167,7 @@ TEST(Principled, TexturedBaseColourTintInSpectralMode) {
         sp.tex.uv = uv;
         SampledWavelengths wl = SampledWavelengths::sampleVisible(0.61f, 6);
         const SampledSpectrum cd = tex->eval(sp.tex, wl);
-        const SampledSpectrum rgb = tex->eval(sp.tex, SampledWavelengths::rgb(vec3(645, 525, 445)));
+        const SampledSpectrum rgb = tex->eval(sp.tex, SampledWavelengths::rgb(defaultChannelWavelengths()));
         const float lum = 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
         const SampledSpectrum diff =
             m1->getBSDF(sp, wl, arena)->eval(n, n, kRad) - m0->getBSDF(sp, wl, arena)->eval(n, n, kRad);

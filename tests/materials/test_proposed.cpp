@@ -101,7 +101,7 @@ TEST(Proposed, EqualsRoughPlasticWithoutPhaseAndEqualEta) {
 TEST(Proposed, ChannelsAreRoughPlasticWithTheirEtaPlusPhase) {
     // Thesis eqs. 3.15–3.22, checked against roughplastic split into fr (diffuse off) and ft
     // (specular off) for each channel's η, and Φ evaluated here in double precision.
-    const vec3 etaT(1.5f, 1.6f, 1.8f), lambda(645, 525, 445);
+    const vec3 etaT(1.5f, 1.6f, 1.8f), lambda = defaultChannelWavelengths();
     const float d = 350.0f, alpha = 0.1f, ws = 0.5f, wd = 0.5f;
     for (const char* mode : {"total", "per_reflection"}) {
         auto prop = makeBSDF("proposed", {{"eta_t", RGBValue{etaT}},
@@ -166,11 +166,11 @@ TEST(Proposed, RGBModeIsDeterministicAndSpectralN1MatchesChannels) {
                                         {"thickness", 76.0f},
                                         {"n0", VectorValue{vec3(0.1736f, 0, 0.9848f)}},
                                         {"alpha", 0.124f}});
-    auto a = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
-    auto b = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
-    const float lambdas[3] = {645, 525, 445};
+    auto a = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
+    auto b = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
+    const vec3 lambdas = defaultChannelWavelengths();
     std::vector<BSDFInstance> spectral;
-    for (float l : lambdas) spectral.push_back(makeBSDF(*props, exactWavelength(l)));
+    for (int c = 0; c < 3; ++c) spectral.push_back(makeBSDF(*props, exactWavelength(lambdas[c])));
     for (const auto& [wo, wi] : randomPairs(200, 5)) {
         const SampledSpectrum fa = a.bsdf->eval(wo, wi, TransportMode::Radiance);
         const SampledSpectrum fb = b.bsdf->eval(wo, wi, TransportMode::Radiance);
@@ -275,7 +275,7 @@ TEST(Proposed, CollapsedLinesMatchGeneralTablePath) {
                                               {"alpha", a}});
             };
             const auto constProps = common(alpha), texProps = common(PropertyValue(checker));
-            std::vector<SampledWavelengths> wls = {SampledWavelengths::rgb(vec3(645, 525, 445))};
+            std::vector<SampledWavelengths> wls = {SampledWavelengths::rgb(defaultChannelWavelengths())};
             for (float u : {0.05f, 0.37f, 0.81f}) wls.push_back(SampledWavelengths::sampleVisible(u, 4));
             for (const SampledWavelengths& wl : wls) {
                 auto fast = makeBSDF(*constProps, wl), general = makeBSDF(*texProps, wl);
@@ -334,7 +334,7 @@ TEST(Proposed, WoCacheGivesTheSameValuesAsFreshBSDFs) {
                                             {"n1", VectorValue{vec3(-0.2f, 0.1f, 0.97f)}},
                                             {"alpha", 0.124f},
                                             {"phase_mode", std::string(mode)}});
-        for (SampledWavelengths wl : {SampledWavelengths::rgb(vec3(645, 525, 445)), SampledWavelengths::sampleVisible(0.3f, 4)}) {
+        for (SampledWavelengths wl : {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::sampleVisible(0.3f, 4)}) {
             auto shared = makeBSDF(*props, wl);
             Arena arena;
             ShadingPoint sp;
@@ -384,7 +384,7 @@ TEST(Proposed, PairCacheGivesTheSameValuesAsFreshBSDFs) {
                                         {"n0", VectorValue{vec3(0.17365f, 0, 0.98481f)}},
                                         {"n1", VectorValue{vec3(-0.2f, 0.1f, 0.97f)}},
                                         {"alpha", 0.124f}});
-    for (SampledWavelengths wl : {SampledWavelengths::rgb(vec3(645, 525, 445)), SampledWavelengths::sampleVisible(0.3f, 4),
+    for (SampledWavelengths wl : {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::sampleVisible(0.3f, 4),
                                   SampledWavelengths::sampleVisible(0.7f, 5)}) {
         auto shared = makeBSDF(*props, wl);
         Arena arena;
@@ -440,7 +440,7 @@ TEST(Proposed, ConstantWeightsEqualTexturedWeights) {
                                       {"wd", wd}});
     };
     const auto constProps = props(0.55f, 0.35f), texProps = props(checker(0.55f), checker(0.35f));
-    for (SampledWavelengths wl : {SampledWavelengths::rgb(vec3(645, 525, 445)), SampledWavelengths::sampleVisible(0.4f, 4),
+    for (SampledWavelengths wl : {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::sampleVisible(0.4f, 4),
                                   SampledWavelengths::sampleVisible(0.9f, 5)}) {
         auto fast = makeBSDF(*constProps, wl), general = makeBSDF(*texProps, wl);
         Pcg32 rng(9, 9);

@@ -72,7 +72,7 @@ struct WavelengthSet {
 
 std::vector<WavelengthSet> wavelengthSets() {
     return {
-        {"RGB", SampledWavelengths::rgb(vec3(645.0f, 525.0f, 445.0f))},
+        {"RGB", SampledWavelengths::rgb(defaultChannelWavelengths())},
         {"N=1@360", SampledWavelengths::sampleUniform(0.0f, 1)},
         {"N=1@830", SampledWavelengths::sampleUniform(kOneMinusEps, 1)},
         {"N=4", SampledWavelengths::sampleVisible(0.37f, 4)},

@@ -118,13 +118,14 @@ TEST(ThinFilmMaterial, ZeroThicknessEqualsPlainMicrofacetFresnel) {
 }
 
 TEST(ThinFilmMaterial, RGBPointModeIsExactStackAtChannelWavelengths) {
-    const SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
     auto inst = makeBSDF("thinfilm", {{"thickness", 260.0f},
                                       {"film_ior", RGBValue{vec3(1.5f, 1.6f, 1.8f)}},
                                       {"substrate_eta", 0.3f},
                                       {"substrate_k", 2.9f}},
                          wl);
-    const float lambdas[3] = {645, 525, 445}, n1[3] = {1.5f, 1.6f, 1.8f};
+    const vec3 lambdas = defaultChannelWavelengths();
+    const float n1[3] = {1.5f, 1.6f, 1.8f};
     for (float co : {1.0f, 0.7f, 0.3f}) {
         const auto s = inst.bsdf->sample(dirFromCos(co), 0.5f, vec2(0.5f), TransportMode::Radiance);
         ASSERT_TRUE(s.has_value());
@@ -244,7 +245,7 @@ TEST(BelcourBarla, MatchesNumericalSpectralIntegration) {
 }
 
 TEST(BelcourBarla, MaterialUsesIntegrationInRGBModeOnly) {
-    const SampledWavelengths rgb = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths rgb = SampledWavelengths::rgb(defaultChannelWavelengths());
     auto point = makeBSDF("thinfilm", {{"thickness", 600.0f}, {"film_ior", 1.6f}}, rgb);
     auto bb = makeBSDF("thinfilm", {{"thickness", 600.0f}, {"film_ior", 1.6f}, {"rgb_mode", S("belcour_barla")}}, rgb);
     const vec3 wo = dirFromCos(0.8f);
@@ -375,7 +376,7 @@ TEST(IridescentDiffuse, InternalReflectanceCacheMatchesQuadrature) {
                 maxErr = std::max(maxErr, std::abs(c.internalHemisphericalReflectance(k) - c.internalHemisphericalReflectanceDirect(k)));
         }
         EXPECT_LT(maxErr, d > 1000 ? 2e-3 : 1e-5) << d;
-        const FilmCoating rgb(spec, TextureQuery{}, SampledWavelengths::rgb(vec3(645, 525, 445)), arena);
+        const FilmCoating rgb(spec, TextureQuery{}, SampledWavelengths::rgb(defaultChannelWavelengths()), arena);
         for (int k = 0; k < 3; ++k)
             EXPECT_FLOAT_EQ(float(rgb.internalHemisphericalReflectance(k)), float(rgb.internalHemisphericalReflectanceDirect(k)));
         // Other channel wavelengths: computed directly.
@@ -612,7 +613,7 @@ TEST(ThinFilmMaterial, GrazingTinyRoughnessSamplesAreConsistent) {
     auto reflectOnly = makeBSDF("thinfilm", common);
     auto props = makeProps("thinfilm", common);
     props->set("transmission", true, {});
-    auto withT = makeBSDF(*props, SampledWavelengths::rgb(vec3(645, 525, 445)));
+    auto withT = makeBSDF(*props, SampledWavelengths::rgb(defaultChannelWavelengths()));
     auto diffuse = makeBSDF("iridescent_diffuse", {{"film_ior", 1.0001f}, {"ext_ior", 1.5f}, {"alpha", 1e-4f},
                                                    {"reflectance", 1.0f}, {"thickness", 300.0f}});
     for (const BSDF* b : {reflectOnly.bsdf, withT.bsdf, diffuse.bsdf})

@@ -157,7 +157,7 @@ TEST(Lights, EnvironmentMapSamplingIsConsistent) {
     Properties p("emitter", "envmap", SourceLocation{"<test>", 0});
     p.set("filename", std::string(path), SourceLocation{});
     const LightPtr env = LightRegistry::instance().create(p);
-    const SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
 
     // Reference ∫ L dω by quadrature over texels (each texel has solid angle Δφ (cos θ0 − cos θ1)).
     double ref = 0;

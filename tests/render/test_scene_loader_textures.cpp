@@ -114,7 +114,7 @@ TEST(SceneLoaderTextures, BitmapTextureRGBAndSpectralModes) {
     const SpectrumTexturePtr t = SpectrumTextureRegistry::instance().create(p, SpectrumKind::Reflectance);
     TextureQuery q;
     q.uv = {0.75f, 0.25f};  // green texel
-    const SampledWavelengths rgb = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths rgb = SampledWavelengths::rgb(defaultChannelWavelengths());
     const SampledSpectrum s = t->eval(q, rgb);
     EXPECT_EQ(s[0], 0.0f);
     EXPECT_EQ(s[1], 1.0f);
@@ -158,7 +158,7 @@ TEST(SceneLoaderTextures, Checkerboard) {
     p.set("color1", RGBValue{vec3(0.1f)}, kLoc);
     p.set("to_uv", glm::scale(mat4(1.0f), vec3(2, 2, 1)), kLoc);
     const SpectrumTexturePtr t = SpectrumTextureRegistry::instance().create(p, SpectrumKind::Reflectance);
-    const SampledWavelengths rgb = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths rgb = SampledWavelengths::rgb(defaultChannelWavelengths());
     auto at = [&](float u, float v) {
         TextureQuery q;
         q.uv = {u, v};

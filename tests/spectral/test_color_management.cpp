@@ -16,8 +16,10 @@
 #include "spectral/color_space.h"
 #include "spectral/spectrum_factory.h"
 #include "spectral/xyz.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
+using iris::test::errorOf;
 namespace fs = std::filesystem;
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -54,16 +56,6 @@ std::string readFile(const std::string& path) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-template <typename F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return {};
 }
 
 vec3 convert1(const ColorManager& cm, vec3 c, const std::string& from, const std::string& to) {

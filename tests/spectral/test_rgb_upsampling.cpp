@@ -138,7 +138,7 @@ TEST(RgbUpsampling, IlluminantConvention) {
 }
 
 TEST(RgbUpsampling, RgbModeIsBitExact) {
-    const SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
     const vec3 triples[] = {vec3(0.123456789f, 0.987654321f, 0.5f), vec3(3.0f, -0.25f, 1e-7f), vec3(1.0f), vec3(0.0f)};
     for (const vec3& rgb : triples) {
         for (SpectrumKind kind : {SpectrumKind::Reflectance, SpectrumKind::Unbounded, SpectrumKind::Illuminant}) {
@@ -198,7 +198,7 @@ TEST(RgbUpsampling, LazyGridForTexturesReproducesRgb) {
     const SampledSpectrum u = grid.sample(2.0f * c, SpectrumKind::Unbounded, wl);
     const SampledSpectrum uRef = grid.reflectance(c / 0.6f, wl) * 1.2f;
     for (int i = 0; i < 8; ++i) EXPECT_NEAR(u[i], uRef[i], 1e-5f);
-    const SampledWavelengths rgbWl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths rgbWl = SampledWavelengths::rgb(defaultChannelWavelengths());
     for (SpectrumKind kind : {SpectrumKind::Reflectance, SpectrumKind::Unbounded, SpectrumKind::Illuminant}) {
         const SampledSpectrum r = grid.sample(vec3(0.1f, 2.0f, 0.3f), kind, rgbWl);
         EXPECT_EQ(r[0], 0.1f);

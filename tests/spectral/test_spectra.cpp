@@ -15,8 +15,10 @@
 #include "spectral/spectrum_factory.h"
 #include "spectral/spectrum_params.h"
 #include "spectral/xyz.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
+using iris::test::errorOf;
 namespace fs = std::filesystem;
 
 namespace {
@@ -41,16 +43,6 @@ std::string writeFile(const std::string& name, const std::string& text) {
     return p.string();
 }
 
-// The error message thrown by f (empty if none).
-template <typename F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return {};
-}
 }  // namespace
 
 TEST(Spectra, BlackbodyStefanBoltzmannAndWien) {
@@ -97,11 +89,12 @@ TEST(Spectra, PiecewiseLinearEvalAndErrors) {
     EXPECT_FLOAT_EQ(s.eval(300.0f), 1.0f);  // constant extrapolation
     EXPECT_FLOAT_EQ(s.eval(800.0f), 2.0f);
     EXPECT_FLOAT_EQ(s.maxValue(), 3.0f);
-    // Unbounded: RGB mode evaluates at the channel wavelengths (645, 525, 445) nm.
-    EXPECT_EQ(s.rgbValue(), vec3(s.eval(645.0f), s.eval(525.0f), s.eval(445.0f)));
-    const SampledSpectrum v = s.sample(SampledWavelengths::rgb(vec3(645, 525, 445)));
-    EXPECT_EQ(v[0], s.eval(645.0f));
-    EXPECT_EQ(v[2], s.eval(445.0f));
+    // Unbounded: RGB mode evaluates at the channel wavelengths.
+    const vec3 l = defaultChannelWavelengths();
+    EXPECT_EQ(s.rgbValue(), vec3(s.eval(l.x), s.eval(l.y), s.eval(l.z)));
+    const SampledSpectrum v = s.sample(SampledWavelengths::rgb(l));
+    EXPECT_EQ(v[0], s.eval(l.x));
+    EXPECT_EQ(v[2], s.eval(l.z));
 
     EXPECT_THROW(makePiecewiseLinearSpectrum({}, {}, SpectrumKind::Unbounded), Error);
     EXPECT_THROW(makePiecewiseLinearSpectrum({400, 500}, {1}, SpectrumKind::Unbounded), Error);
@@ -122,7 +115,7 @@ TEST(Spectra, RgbValueOfSpectralReflectanceAndIlluminant) {
     const SpectrumPtr tab = makePiecewiseLinearSpectrum(ls, vs, SpectrumKind::Reflectance);
     EXPECT_LT(maxAbsDiff(tab->rgbValue(), rgb), 1e-3f);
     // In RGB mode the spectral reflectance yields its projection.
-    const SampledSpectrum v = tab->sample(SampledWavelengths::rgb(vec3(645, 525, 445)));
+    const SampledSpectrum v = tab->sample(SampledWavelengths::rgb(defaultChannelWavelengths()));
     for (int i = 0; i < 3; ++i) EXPECT_EQ(v[i], tab->rgbValue()[i]);
     // Illuminant: plain projection; D65 with Y = 1 → (1, 1, 1); equal energy → the IEC matrix row sums.
     EXPECT_LT(maxAbsDiff(makeD65Spectrum()->rgbValue(), vec3(1.0f)), 1e-3f);

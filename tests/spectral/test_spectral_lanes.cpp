@@ -149,7 +149,7 @@ TEST(SpectralLanes, HeroLanesEqualOneAtATimeSampling) {
             }
         }
     }
-    const SampledWavelengths rgb = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths rgb = SampledWavelengths::rgb(defaultChannelWavelengths());
     EXPECT_EQ(rgb.pdfs()[3], 0.0f);
 }
 
@@ -306,7 +306,7 @@ TEST(SpectralLanes, D65SpectrumSampleEqualsEval) {
         const SampledSpectrum v = d.sample(wl);
         for (int i = 0; i < n; ++i) ASSERT_EQ(v[i], d.eval(wl.lambda(i)));
     }
-    const SampledSpectrum rgb = d.sample(SampledWavelengths::rgb(vec3(645, 525, 445)));
+    const SampledSpectrum rgb = d.sample(SampledWavelengths::rgb(defaultChannelWavelengths()));
     for (int c = 0; c < 3; ++c) EXPECT_EQ(rgb[c], d.rgbValue()[c]);
 }
 

@@ -76,8 +76,13 @@ TEST(Wavelengths, TerminateSecondaryKeepsEstimatorUnbiased) {
     for (int i = 1; i < 4; ++i) EXPECT_EQ(wl.pdf(i), 0.0f);
 }
 
+TEST(Wavelengths, DefaultChannelWavelengthsAreTheThesis) {
+    // Thesis 000 Table 3.1: λ = 645, 525, 445 nm for R, G, B (the one definition, wavelengths.h).
+    EXPECT_EQ(defaultChannelWavelengths(), vec3(645.0f, 525.0f, 445.0f));
+}
+
 TEST(Wavelengths, RgbModeUsesFixedChannels) {
-    const SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445));
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
     EXPECT_TRUE(wl.isRGB());
     EXPECT_EQ(wl.size(), 3);
     EXPECT_EQ(wl.lambda(0), 645.0f);

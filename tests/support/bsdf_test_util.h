@@ -56,7 +56,7 @@ std::shared_ptr<Properties> makeProps(const std::string& type, std::initializer_
 /// Create the material through MaterialRegistry (unknown parameters throw) and a BSDF for wl.
 BSDFInstance makeBSDF(const Properties& props, SampledWavelengths wl);
 BSDFInstance makeBSDF(const std::string& type, std::initializer_list<Param> params,
-                      SampledWavelengths wl = SampledWavelengths::rgb(vec3(645, 525, 445)));
+                      SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths()));
 
 struct Chi2Options {
     int thetaBins = 20;       // over [0, π]; keep even so the horizon is a cell boundary

@@ -1,0 +1,21 @@
+// The message of the iris::Error a callable throws, for tests that check error messages.
+#pragma once
+
+#include <string>
+
+#include "core/error.h"
+
+namespace iris::test {
+
+/// The message of the iris::Error that f throws ("" when it throws none).
+template <typename F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return {};
+}
+
+}  // namespace iris::test
