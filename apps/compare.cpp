@@ -1,7 +1,8 @@
 // compare: error metrics of a test image against a reference (like OpenImageIO's idiff).
 //   compare test.exr ref.exr [--json] [--diff out.exr|out.png] [--per-channel] [--no-flip] [--ppd P]
 // Prints MSE, relMSE, SMAPE, PSNR, mean / p99 / max CIEDE2000, mean LDR- and HDR-FLIP (definitions
-// in docs/metrics.md); exit 0.
+// in docs/metrics.md); exit 0. A spectral image (render --spectral-output) is compared in linear
+// Rec.709 derived from its bins, and --per-channel gives the error of every wavelength band.
 // Errors (unreadable file, size mismatch, bad arguments) print one line and exit 1.
 #include <cctype>
 #include <cmath>
@@ -13,8 +14,11 @@
 
 #include "core/error.h"
 #include "core/io/image.h"
+#include "core/io/spectral_layout.h"
 #include "experiments/metrics/flip.h"
 #include "experiments/metrics/image_metrics.h"
+#include "spectral/color_space.h"
+#include "spectral/spectral_bins.h"
 
 using namespace iris;
 
@@ -27,7 +31,8 @@ const char* kUsage =
     "                  (channel FLIP) to an EXR, or the CIEDE2000 map scaled by 1/10 (white = 10) to\n"
     "                  an 8-bit PNG/JPEG\n"
     "  --per-channel   also MSE, relMSE and SMAPE of every channel both images have (e.g. the\n"
-    "                  wavelength bands of spectral images)\n"
+    "                  wavelength bands S0.<nm>nm of spectral images; the other metrics compare a\n"
+    "                  spectral image through the linear Rec.709 colour derived from its bins)\n"
     "  --no-flip       skip LDR-/HDR-FLIP (the slowest metrics)\n"
     "  --ppd P         pixels per degree for FLIP (default 67.02: 0.7 m from a 0.7 m wide 3840-pixel monitor)\n";
 
@@ -86,6 +91,19 @@ void writeDiff(const std::string& path, const Image& test, const Image& ref, con
     }
 }
 
+/// The colour image the metrics compare: a spectral image (Fichet et al. 2021 layout) becomes
+/// linear Rec.709 through CIE XYZ (what `render` writes by default); any other image is as read.
+Image colourImage(const Image& img, const std::string& path) {
+    if (!hasSpectralChannels(img)) return img;
+    Image rgb = xyzImage(spectralChannels(img, path));
+    rgb.channelNames = {"R", "G", "B"};
+    for (size_t p = 0; p < rgb.pixelCount(); ++p) {
+        const dvec3 c = xyzToLinearRec709(dvec3(rgb.pixels[3 * p], rgb.pixels[3 * p + 1], rgb.pixels[3 * p + 2]));
+        for (int k = 0; k < 3; ++k) rgb.pixels[3 * p + size_t(k)] = float(c[k]);
+    }
+    return rgb;
+}
+
 std::string jsonChannels(const std::vector<ChannelErrors>& channels) {
     std::string out = "[";
     for (const ChannelErrors& c : channels)
@@ -133,8 +151,10 @@ int main(int argc, char** argv) {
         return 1;
     }
     try {
-        const Image test = readImage(files[0]);
-        const Image ref = readImage(files[1]);
+        const Image testFile = readImage(files[0]);
+        const Image refFile = readImage(files[1]);
+        const Image test = colourImage(testFile, files[0]);
+        const Image ref = colourImage(refFile, files[1]);
         ImageErrors e;
         try {
             e = compareImages(test, ref);
@@ -147,7 +167,7 @@ int main(int argc, char** argv) {
             hdr = hdrFlip(test, ref, ppd);
         }
         const double nan = std::nan("");
-        const std::vector<ChannelErrors> channels = perChannel ? channelErrors(test, ref) : std::vector<ChannelErrors>{};
+        const std::vector<ChannelErrors> channels = perChannel ? channelErrors(testFile, refFile) : std::vector<ChannelErrors>{};
         if (!diffPath.empty()) writeDiff(diffPath, test, ref, hdr.map);
         if (json) {
             std::printf(

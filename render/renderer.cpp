@@ -108,10 +108,13 @@ std::string Renderer::settingsKey() const {
                   ";maxdepth=", scene_.description().integrator.maxDepth);
 }
 
-RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const {
+RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral) const {
     const auto start = Clock::now();
     const Camera camera(scene_.description().camera);
     if (film.width() != camera.width() || film.height() != camera.height()) fail("film and camera sizes differ");
+    if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (RGB-mode channels are not wavelength samples)");
+    if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
+        fail("the spectral film must have the film's size and start empty");
     const PixelFilter filter(scene_.description().camera);
     const std::unique_ptr<Integrator> integrator = Integrator::create(scene_.description().integrator, scene_);
 
@@ -184,11 +187,13 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const 
                             value = vec3(L[0], L[1], L[2]);
                         else
                             value = toXYZ(L, wl);
-                        if (!isFinite(value) || L.hasNegative()) {
+                        const bool valid = isFinite(value) && !L.hasNegative();
+                        if (!valid) {
                             ++ts.invalid;
                             value = vec3(0.0f);
                         }
                         film.addSample(x, y, value);
+                        if (spectral) valid ? spectral->addSample(x, y, L, wl) : spectral->addZeroSample(x, y);
                     }
                 const int done = ++tilesDone;
                 if (opt_.progress) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "render/film.h"
+#include "render/spectral_film.h"
 #include "render/scene.h"
 
 namespace iris {
@@ -43,7 +44,8 @@ class Renderer {
 public:
     Renderer(const Scene& scene, const RenderOptions& options);
     /// Render into `film`; `cancel` may be set asynchronously (signal handler) to stop early.
-    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr) const;
+    /// `spectral`, if given (spectral mode only), receives the same samples binned by wavelength.
+    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr, SpectralFilm* spectral = nullptr) const;
     /// String identifying everything that determines the image (checkpoint compatibility).
     std::string settingsKey() const;
     int targetSpp() const { return spp_; }

@@ -28,6 +28,24 @@ def compare(compare_tool: Path, test: Path, ref: Path) -> dict:
     return {k: (math.inf if k == "psnr" and v is None else v) for k, v in out.items()}
 
 
+def band_errors(compare_tool: Path, test: Path, ref: Path) -> dict:
+    """Error per wavelength band of two spectral EXRs (render --spectral-output; channels
+    "S0.<nm>nm", Fichet et al. 2021): {wavelength_nm: {"mse", "relmse", "smape"}}, by wavelength."""
+    proc = subprocess.run([str(compare_tool), str(test), str(ref), "--json", "--per-channel", "--no-flip"], cwd=REPO,
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise ExperimentError(proc.stderr.strip() or f"compare failed on {test} vs {ref}")
+    bands = {}
+    for ch in json.loads(proc.stdout).get("per_channel", []):
+        name = ch["name"]
+        if name.startswith("S0.") and name.endswith("nm"):
+            nm = float(name[3:-2].replace(",", "."))
+            bands[nm] = {k: ch[k] for k in ("mse", "relmse", "smape")}
+    if not bands:
+        raise ExperimentError(f"{test} and {ref} share no spectral band (S0.<nm>nm channels)")
+    return dict(sorted(bands.items()))
+
+
 def merge(merge_tool: Path, inputs, output: Path) -> Path:
     """Sample-count-weighted merge of renders with different seeds (apps/merge.cpp)."""
     output = Path(output)

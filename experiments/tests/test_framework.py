@@ -207,6 +207,22 @@ class MergeAndCompareTest(TempDirTest):
         self.assertIn("small.exr", str(cm.exception))
 
 
+    def test_band_errors_of_spectral_images(self):
+        names = ("S0.555,000000nm", "S0.455,000000nm", "S0.655,000000nm")
+        ref = np.full((4, 4, 3), 0.5, np.float32)
+        test = ref.copy()
+        test[:, :, 0] += 0.1   # only the 555 nm band differs
+        exr.write_exr(str(self.tmp / "r.exr"), ref, channels=names)
+        exr.write_exr(str(self.tmp / "t.exr"), test, channels=names)
+        bands = collect.band_errors(BUILD / "compare", self.tmp / "t.exr", self.tmp / "r.exr")
+        self.assertEqual(list(bands), [455.0, 555.0, 655.0])
+        self.assertAlmostEqual(bands[555.0]["mse"], 0.01, places=6)
+        self.assertEqual(bands[455.0]["mse"], 0.0)
+        exr.write_exr(str(self.tmp / "rgb.exr"), ref)
+        with self.assertRaises(ExperimentError):
+            collect.band_errors(BUILD / "compare", self.tmp / "rgb.exr", self.tmp / "rgb.exr")
+
+
 class SceneCheckTest(TempDirTest):
     def test_reports_missing_scene_parameter_and_material(self):
         scene = self.scene()
