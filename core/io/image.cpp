@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -25,6 +28,7 @@
 
 #include "core/error.h"
 #include "core/io/oiio_loader.h"
+#include "core/io/png_writer.h"
 
 namespace iris {
 
@@ -122,7 +126,6 @@ void writeEXR(const std::string& path, const Image& img, const ImageMetadata& me
 
 void writeLDR(const std::string& path, const Image& img) {
     checkWritable(path, img);
-    const OiioModule& oiio = oiioModule(path, "write this image");
     const std::string tmp = tempPathFor(path);
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -135,6 +138,21 @@ void writeLDR(const std::string& path, const Image& img) {
             if (!(v > 0.0f)) v = 0.0f;  // also maps NaN to 0
             bytes[p * size_t(channels) + size_t(c)] = (unsigned char)std::lround(std::min(v, 1.0f) * 255.0f);
         }
+    if (ext == ".png") {  // our own encoder: no OpenImageIO module to load (core/io/png_writer.h)
+        const std::vector<uint8_t> png = encodePNG(img.width, img.height, channels, bytes.data());
+        {
+            std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+            f.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+            f.close();
+            if (!f) {
+                removeQuietly(tmp);
+                fail(path, ": cannot write image (", std::strerror(errno), ")");
+            }
+        }
+        commitTemp(tmp, path);
+        return;
+    }
+    const OiioModule& oiio = oiioModule(path, "write this image");
     // The module picks the format from the real path's extension and writes the temp file.
     char err[1024] = "";
     if (!oiio.writeU8(path.c_str(), tmp.c_str(), img.width, img.height, channels, bytes.data(), err, sizeof(err))) {

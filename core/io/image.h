@@ -1,7 +1,7 @@
 // Float images and their files: OpenEXR output (with string metadata), 8-bit LDR output and reading
-// of anything OpenImageIO understands. EXR goes through OpenEXR; LDR output and other formats go
-// through the OpenImageIO module, loaded on first use (core/io/oiio_loader.h). Library headers
-// stay in image.cpp.
+// of anything OpenImageIO understands. EXR goes through OpenEXR, PNG output through iris's own
+// encoder (core/io/png_writer.h); JPEG output and other formats go through the OpenImageIO
+// module, loaded on first use (core/io/oiio_loader.h). Library headers stay in image.cpp.
 #pragma once
 
 #include <cstddef>
@@ -42,7 +42,8 @@ std::string metadataValue(const ImageMetadata& meta, const std::string& key, con
 /// attributes; atomically: write "<path>.tmp-<pid>" then rename over path. Throws iris::Error naming the file.
 void writeEXR(const std::string& path, const Image& img, const ImageMetadata& meta = {});
 
-/// Write an 8-bit LDR image (PNG/JPEG by extension) through OpenImageIO (the module); input values
+/// Write an 8-bit LDR image (PNG/JPEG by extension; PNG with core/io/png_writer.h, anything else
+/// through the OpenImageIO module); input values
 /// are display code values in [0,1] (clamped, rounded); atomic as above. Throws iris::Error naming
 /// the file, also when the module cannot be loaded.
 void writeLDR(const std::string& path, const Image& img);
