@@ -136,6 +136,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const 
 
     ProgressBar progress(opt_.progress, start);
     std::atomic<int> tilesDone{0};
+    std::atomic<uint64_t> tilesFinished{0};
     RenderStats rs;
     auto lastCheckpoint = Clock::now();
     const bool unlimitedSpp = spp_ == 0;
@@ -191,6 +192,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const 
                         film.addSample(x, y, value);
                     }
                 const int done = ++tilesDone;
+                if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);
                 if (opt_.progress) {
                     const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit
                                                      : (double(s - firstSample) + double(done) / nTiles) / double(target - firstSample);
