@@ -25,6 +25,7 @@
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/exr_header_check.h"
 #include "core/io/oiio_loader.h"
 
 namespace iris {
@@ -261,6 +262,7 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
 
 Image readImage(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
+    checkExrHeaderSizes(path);
     if (isFlatExr(path)) {
         Image img;
         if (readExrDirect(path, img)) {
@@ -273,12 +275,14 @@ Image readImage(const std::string& path, ImageFileInfo* info) {
 
 Image readImageWithOpenImageIO(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
+    checkExrHeaderSizes(path);
     return readThroughModule(path, info);
 }
 
 ImageMetadata readEXRMetadata(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(path, ": file not found");
+    checkExrHeaderSizes(path);
     ImageMetadata meta;
     try {
         Imf::InputFile file(path.c_str());
