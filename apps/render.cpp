@@ -5,7 +5,9 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -32,6 +34,29 @@ std::atomic<bool> gCancel{false};
 extern "C" void onSignal(int sig) {
     gCancel.store(true);
     std::signal(sig, SIG_DFL);  // a second Ctrl-C terminates immediately
+}
+
+/// Test hook (docs/testing.md, "Fault hooks"): IRIS_TEST_SIGNAL_AFTER_PASSES=K or
+/// IRIS_TEST_SIGNAL_AFTER_TILES=K raise IRIS_TEST_SIGNAL (INT, the default, or TERM) once K passes
+/// or K tiles of this run are finished, so that interruption tests do not race the render.
+std::function<void(uint64_t, int)> signalHookFromEnvironment() {
+    auto count = [](const char* name) -> uint64_t {
+        const char* v = std::getenv(name);
+        if (!v || !*v) return 0;
+        char* end = nullptr;
+        const unsigned long long n = std::strtoull(v, &end, 10);
+        if (*end != '\0' || n == 0) fail(name, " must be a positive integer, got '", v, "'");
+        return n;
+    };
+    const uint64_t passes = count("IRIS_TEST_SIGNAL_AFTER_PASSES"), tiles = count("IRIS_TEST_SIGNAL_AFTER_TILES");
+    if (!passes && !tiles) return {};
+    const char* name = std::getenv("IRIS_TEST_SIGNAL");
+    const std::string sigName = name ? name : "INT";
+    if (sigName != "INT" && sigName != "TERM") fail("IRIS_TEST_SIGNAL must be INT or TERM, got '", sigName, "'");
+    const int sig = sigName == "INT" ? SIGINT : SIGTERM;
+    return [=](uint64_t finished, int tilesPerPass) {
+        if (finished == (passes ? passes * uint64_t(tilesPerPass) : tiles)) std::raise(sig);
+    };
 }
 
 /// printf format: %s is the default RGB channel wavelengths.
@@ -198,6 +223,7 @@ int main(int argc, char** argv) {
 
         SceneDescription desc = loadScene(scenePath, defines);
         const Scene scene(std::move(desc));
+        opt.onTileFinished = signalHookFromEnvironment();
         const Renderer renderer(scene, opt);
         Film film(scene.description().camera.width, scene.description().camera.height);
         if (resume) film.load(checkpoint, renderer.settingsKey());

@@ -20,6 +20,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/io/atomic_file.h"
 #include "core/quadrature.h"
 #include "materials/fresnel.h"
 
@@ -354,36 +355,27 @@ bool writeRoughTables(const std::string& path, const RoughTransmittanceTables& t
     std::error_code ec;
     const fs::path p(path);
     if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    const std::string tmp = strCat(path, ".tmp", ::getpid(), "_", reinterpret_cast<uintptr_t>(&t));
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) return false;
-        Header h{};
-        std::memcpy(h.magic, kMagic, 8);
-        h.version = kFormatVersion;
-        h.type = uint32_t(t.type);
-        h.nEta = t.res.nEta;
-        h.nAlpha = t.res.nAlpha;
-        h.nMu = t.res.nMu;
-        h.quadrature = t.res.quadrature;
-        h.etaMin = RoughTransmittanceTables::kEtaMin;
-        h.etaMax = RoughTransmittanceTables::kEtaMax;
-        h.alphaMax = RoughTransmittanceTables::kAlphaMax;
-        const uint64_t sum = fnv1a(t.diffuse.data(), t.diffuse.size() * sizeof(float),
-                                   fnv1a(t.ext.data(), t.ext.size() * sizeof(float)));
-        out.write(reinterpret_cast<const char*>(&h), sizeof(h));
-        out.write(reinterpret_cast<const char*>(t.ext.data()), std::streamsize(t.ext.size() * sizeof(float)));
-        out.write(reinterpret_cast<const char*>(t.diffuse.data()), std::streamsize(t.diffuse.size() * sizeof(float)));
-        out.write(reinterpret_cast<const char*>(&sum), sizeof(sum));
-        if (!out) {
-            out.close();
-            fs::remove(tmp, ec);
-            return false;
-        }
-    }
-    fs::rename(tmp, p, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
+    Header h{};
+    std::memcpy(h.magic, kMagic, 8);
+    h.version = kFormatVersion;
+    h.type = uint32_t(t.type);
+    h.nEta = t.res.nEta;
+    h.nAlpha = t.res.nAlpha;
+    h.nMu = t.res.nMu;
+    h.quadrature = t.res.quadrature;
+    h.etaMin = RoughTransmittanceTables::kEtaMin;
+    h.etaMax = RoughTransmittanceTables::kEtaMax;
+    h.alphaMax = RoughTransmittanceTables::kAlphaMax;
+    const uint64_t sum = fnv1a(t.diffuse.data(), t.diffuse.size() * sizeof(float),
+                               fnv1a(t.ext.data(), t.ext.size() * sizeof(float)));
+    std::string bytes(reinterpret_cast<const char*>(&h), sizeof(h));
+    bytes.append(reinterpret_cast<const char*>(t.ext.data()), t.ext.size() * sizeof(float));
+    bytes.append(reinterpret_cast<const char*>(t.diffuse.data()), t.diffuse.size() * sizeof(float));
+    bytes.append(reinterpret_cast<const char*>(&sum), sizeof(sum));
+    // Atomic (core/io/atomic_file.h): a concurrent reader sees the old cache or the whole new one.
+    try {
+        writeFileAtomically(path, bytes);
+    } catch (const Error&) {
         return false;
     }
     return true;

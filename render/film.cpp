@@ -1,9 +1,14 @@
 #include "render/film.h"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/io/atomic_file.h"
 
 namespace iris {
 
@@ -99,48 +104,95 @@ std::vector<float> Film::varianceOfMeanImage() const {
     return img;
 }
 
+// Checkpoint format 3 (host byte order; a checkpoint resumes on the machine that wrote it):
+//   "IRISCKP3", uint64 header length, header, int32 width, int32 height,
+//   double sum[3wh], double sumSq[3wh], uint32 count[wh], uint32 CRC-32 (zlib) of all bytes before it.
+// Written atomically (core/io/atomic_file.h); load checks size, checksum, header and film size
+// before touching the film, so a truncated, corrupted or foreign file is refused, never resumed.
 namespace {
-constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '2'};
+
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '3'};
+constexpr char kMagicPrefix[7] = {'I', 'R', 'I', 'S', 'C', 'K', 'P'};
+constexpr uint64_t kMaxHeader = 1u << 20;
+
+template <typename T>
+void append(std::string& out, const T* p, size_t n) {
+    out.append(reinterpret_cast<const char*>(p), n * sizeof(T));
 }
 
-void Film::save(const std::string& path, const std::string& header) const {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) fail(path, ": cannot write checkpoint");
-        const uint64_t hlen = header.size();
-        f.write(kMagic, 8);
-        f.write(reinterpret_cast<const char*>(&hlen), sizeof hlen);
-        f.write(header.data(), std::streamsize(hlen));
-        f.write(reinterpret_cast<const char*>(&width_), sizeof width_);
-        f.write(reinterpret_cast<const char*>(&height_), sizeof height_);
-        f.write(reinterpret_cast<const char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
-        f.write(reinterpret_cast<const char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
-        f.write(reinterpret_cast<const char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
-        if (!f) fail(path, ": error while writing checkpoint");
+uint32_t crcOf(const char* p, size_t n) {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    while (n > 0) {  // zlib's length is a uInt
+        const uInt chunk = uInt(std::min<size_t>(n, 1u << 30));
+        crc = crc32(crc, reinterpret_cast<const Bytef*>(p), chunk);
+        p += chunk;
+        n -= chunk;
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, ": cannot move checkpoint into place");
+    return uint32_t(crc);
+}
+
+template <typename T>
+void take(const std::string& in, size_t& pos, T* p, size_t n) {
+    std::memcpy(p, in.data() + pos, n * sizeof(T));
+    pos += n * sizeof(T);
+}
+
+std::string readWholeFile(const std::string& path, uint64_t maxBytes) {
+    std::ifstream f(path, std::ios::binary | std::ios::ate);
+    if (!f) fail(path, ": cannot open checkpoint");
+    const std::streamoff size = f.tellg();
+    if (size < 0) fail(path, ": cannot read checkpoint");
+    if (uint64_t(size) > maxBytes) fail(path, ": checkpoint is ", size, " bytes, more than this film's ", maxBytes, " (not a checkpoint of this render)");
+    std::string data(size_t(size), '\0');
+    f.seekg(0);
+    f.read(data.data(), size);
+    if (!f) fail(path, ": cannot read checkpoint");
+    return data;
+}
+
+}  // namespace
+
+void Film::save(const std::string& path, const std::string& header) const {
+    std::string out;
+    out.reserve(8 + 8 + header.size() + 8 + (sum_.size() + sumSq_.size()) * sizeof(double) + count_.size() * 4 + 4);
+    const uint64_t hlen = header.size();
+    append(out, kMagic, 8);
+    append(out, &hlen, 1);
+    append(out, header.data(), header.size());
+    append(out, &width_, 1);
+    append(out, &height_, 1);
+    append(out, sum_.data(), sum_.size());
+    append(out, sumSq_.data(), sumSq_.size());
+    append(out, count_.data(), count_.size());
+    const uint32_t crc = crcOf(out.data(), out.size());
+    append(out, &crc, 1);
+    writeFileAtomically(path, out);
 }
 
 void Film::load(const std::string& path, const std::string& header) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) fail(path, ": cannot open checkpoint");
-    char magic[8];
+    const size_t pixels = sum_.size() / 3;
+    const uint64_t payload = 8 + 8 + 2 * sizeof(int32_t) + (2 * 3 * sizeof(double) + sizeof(uint32_t)) * uint64_t(pixels) + 4;
+    const std::string in = readWholeFile(path, payload + kMaxHeader);
+    if (in.size() < 16 || std::memcmp(in.data(), kMagicPrefix, 7) != 0) fail(path, ": not an iris checkpoint");
+    if (in[7] != kMagic[7])
+        fail(path, ": checkpoint format version ", in[7], " is not read by this iris (version ", kMagic[7], "); render again without --resume");
     uint64_t hlen = 0;
-    f.read(magic, 8);
-    f.read(reinterpret_cast<char*>(&hlen), sizeof hlen);
-    if (!f || std::string(magic, 8) != std::string(kMagic, 8) || hlen > (1u << 20)) fail(path, ": not an iris checkpoint");
-    std::string h(hlen, '\0');
-    f.read(h.data(), std::streamsize(hlen));
-    if (h != header) fail(path, ": checkpoint was made with a different scene or settings");
-    int w = 0, hgt = 0;
-    f.read(reinterpret_cast<char*>(&w), sizeof w);
-    f.read(reinterpret_cast<char*>(&hgt), sizeof hgt);
-    if (!f || w != width_ || hgt != height_) fail(path, ": checkpoint film size differs");
-    f.read(reinterpret_cast<char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
-    f.read(reinterpret_cast<char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
-    f.read(reinterpret_cast<char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
-    if (!f) fail(path, ": checkpoint is truncated");
+    std::memcpy(&hlen, in.data() + 8, 8);
+    if (hlen > kMaxHeader || in.size() != payload + hlen)
+        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
+             height_, " film with this header has ", payload + std::min(hlen, kMaxHeader), ")");
+    uint32_t stored = 0;
+    std::memcpy(&stored, in.data() + in.size() - 4, 4);
+    if (crcOf(in.data(), in.size() - 4) != stored) fail(path, ": checkpoint is corrupted (CRC-32 mismatch); render again without --resume");
+    if (in.compare(16, hlen, header) != 0) fail(path, ": checkpoint was made with a different scene or settings");
+    size_t pos = 16 + hlen;
+    int w = 0, h = 0;
+    take(in, pos, &w, 1);
+    take(in, pos, &h, 1);
+    if (w != width_ || h != height_) fail(path, ": checkpoint film size differs");
+    take(in, pos, sum_.data(), sum_.size());
+    take(in, pos, sumSq_.data(), sumSq_.size());
+    take(in, pos, count_.data(), count_.size());
 }
 
 }  // namespace iris

@@ -58,7 +58,8 @@ public:
 
     /// Exact binary state (sums and counts) for checkpoints. Throws iris::Error naming the file.
     void save(const std::string& path, const std::string& header) const;
-    /// Load a checkpoint written by save(); `header` must match exactly (scene, settings).
+    /// Load a checkpoint written by save(); `header` must match exactly (scene, settings). A
+    /// truncated, corrupted (CRC-32) or foreign file throws iris::Error and leaves the film as it was.
     void load(const std::string& path, const std::string& header);
 
 private:

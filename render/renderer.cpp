@@ -139,6 +139,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
 
     ProgressBar progress(opt_.progress, start);
     std::atomic<int> tilesDone{0};
+    std::atomic<uint64_t> tilesFinished{0};
     RenderStats rs;
     auto lastCheckpoint = Clock::now();
     const bool unlimitedSpp = spp_ == 0;
@@ -196,6 +197,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         if (spectral) valid ? spectral->addSample(x, y, L, wl) : spectral->addZeroSample(x, y);
                     }
                 const int done = ++tilesDone;
+                if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);
                 if (opt_.progress) {
                     const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit
                                                      : (double(s - firstSample) + double(done) / nTiles) / double(target - firstSample);

@@ -28,6 +28,10 @@ struct RenderOptions {
     std::string checkpointPath;    // "" = no checkpoints
     double checkpointEvery = 0;    // seconds between checkpoints (0 = only at the end/interrupt)
     bool resume = false;           // continue from checkpointPath
+    // Called after every finished tile, on the worker thread that rendered it, with the number of
+    // tiles finished in this render() call and the tiles per pass (a pass is finished when the
+    // count reaches a multiple of it). Interruption tests use it to stop at an exact point.
+    std::function<void(uint64_t tilesFinished, int tilesPerPass)> onTileFinished;
 };
 
 struct RenderStats {

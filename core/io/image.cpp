@@ -9,10 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -27,6 +24,8 @@
 #include <OpenEXR/ImfTestFile.h>
 
 #include "core/error.h"
+#include "core/io/atomic_file.h"
+#include "core/io/exr_header_check.h"
 #include "core/io/oiio_loader.h"
 #include "core/io/png_writer.h"
 
@@ -36,28 +35,35 @@ namespace {
 
 constexpr size_t kMaxPixels = size_t(1) << 28;
 
-std::string tempPathFor(const std::string& path) { return strCat(path, ".tmp-", ::getpid()); }
-
-/// Rename the finished temporary file over `path` (atomic on POSIX within one file system).
-void commitTemp(const std::string& tmp, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        fail(path, ": cannot move the written file into place: ", ec.message());
-    }
-}
-
-void removeQuietly(const std::string& p) {
-    std::error_code ec;
-    std::filesystem::remove(p, ec);
-}
-
 void checkWritable(const std::string& path, const Image& img) {
     if (img.width <= 0 || img.height <= 0 || img.channels <= 0)
         fail(path, ": cannot write an empty image (", img.width, "x", img.height, "x", img.channels, ")");
     if (img.pixels.size() != img.pixelCount() * size_t(img.channels))
         fail(path, ": image has ", img.pixels.size(), " values, expected ", img.pixelCount() * size_t(img.channels));
+}
+
+/// Write the EXR file itself at `file` (a temporary); errors name `path`.
+void writeEXRTo(const std::string& file, const std::string& path, const Image& img, const std::vector<std::string>& names,
+                const ImageMetadata& meta) {
+    try {
+        Imf::Header header(img.width, img.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (const auto& [key, value] : meta) header.insert(key, Imf::StringAttribute(value));
+        Imf::FrameBuffer fb;
+        const size_t xStride = sizeof(float) * size_t(img.channels);
+        const size_t yStride = xStride * size_t(img.width);
+        for (int c = 0; c < img.channels; ++c) {
+            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+            // const_cast: OpenEXR's Slice takes char* for both reading and writing; we only write.
+            char* base = reinterpret_cast<char*>(const_cast<float*>(img.pixels.data() + c));
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
+        }
+        Imf::OutputFile out(file.c_str(), header);
+        out.setFrameBuffer(fb);
+        out.writePixels(img.height);
+    } catch (const std::exception& e) {
+        fail(path, ": cannot write EXR: ", e.what());
+    }
 }
 
 }  // namespace
@@ -95,38 +101,11 @@ void writeEXR(const std::string& path, const Image& img, const ImageMetadata& me
         for (size_t j = i + 1; j < names.size(); ++j)
             if (names[i] == names[j]) fail(path, ": duplicate channel name '", names[i], "'");
 
-    const std::string tmp = tempPathFor(path);
-    try {
-        Imf::Header header(img.width, img.height);
-        header.compression() = Imf::ZIP_COMPRESSION;
-        for (const auto& [key, value] : meta) header.insert(key, Imf::StringAttribute(value));
-        Imf::FrameBuffer fb;
-        const size_t xStride = sizeof(float) * size_t(img.channels);
-        const size_t yStride = xStride * size_t(img.width);
-        for (int c = 0; c < img.channels; ++c) {
-            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-            // const_cast: OpenEXR's Slice takes char* for both reading and writing; we only write.
-            char* base = reinterpret_cast<char*>(const_cast<float*>(img.pixels.data() + c));
-            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
-        }
-        {
-            Imf::OutputFile file(tmp.c_str(), header);
-            file.setFrameBuffer(fb);
-            file.writePixels(img.height);
-        }
-    } catch (const Error&) {
-        removeQuietly(tmp);
-        throw;
-    } catch (const std::exception& e) {
-        removeQuietly(tmp);
-        fail(path, ": cannot write EXR: ", e.what());
-    }
-    commitTemp(tmp, path);
+    writeFileAtomicallyWith(path, [&](const std::string& tmp) { writeEXRTo(tmp, path, img, names, meta); });
 }
 
 void writeLDR(const std::string& path, const Image& img) {
     checkWritable(path, img);
-    const std::string tmp = tempPathFor(path);
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     const bool noAlpha = ext == ".jpg" || ext == ".jpeg";  // JPEG has no alpha channel
@@ -140,26 +119,16 @@ void writeLDR(const std::string& path, const Image& img) {
         }
     if (ext == ".png") {  // our own encoder: no OpenImageIO module to load (core/io/png_writer.h)
         const std::vector<uint8_t> png = encodePNG(img.width, img.height, channels, bytes.data());
-        {
-            std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-            f.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-            f.close();
-            if (!f) {
-                removeQuietly(tmp);
-                fail(path, ": cannot write image (", std::strerror(errno), ")");
-            }
-        }
-        commitTemp(tmp, path);
+        writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
         return;
     }
     const OiioModule& oiio = oiioModule(path, "write this image");
     // The module picks the format from the real path's extension and writes the temp file.
-    char err[1024] = "";
-    if (!oiio.writeU8(path.c_str(), tmp.c_str(), img.width, img.height, channels, bytes.data(), err, sizeof(err))) {
-        removeQuietly(tmp);
-        fail(path, ": ", err);
-    }
-    commitTemp(tmp, path);
+    writeFileAtomicallyWith(path, [&](const std::string& tmp) {
+        char err[1024] = "";
+        if (!oiio.writeU8(path.c_str(), tmp.c_str(), img.width, img.height, channels, bytes.data(), err, sizeof(err)))
+            fail(path, ": ", err);
+    });
 }
 
 namespace {
@@ -299,6 +268,7 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
 
 Image readImage(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
+    checkExrHeaderSizes(path);
     if (isFlatExr(path)) {
         Image img;
         if (readExrDirect(path, img)) {
@@ -311,12 +281,14 @@ Image readImage(const std::string& path, ImageFileInfo* info) {
 
 Image readImageWithOpenImageIO(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
+    checkExrHeaderSizes(path);
     return readThroughModule(path, info);
 }
 
 ImageMetadata readEXRMetadata(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(path, ": file not found");
+    checkExrHeaderSizes(path);
     ImageMetadata meta;
     try {
         Imf::InputFile file(path.c_str());

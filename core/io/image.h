@@ -39,7 +39,7 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 std::string metadataValue(const ImageMetadata& meta, const std::string& key, const std::string& def = {});
 
 /// Write an OpenEXR file with OpenEXR (FLOAT channels, ZIP compression) and the metadata as string
-/// attributes; atomically: write "<path>.tmp-<pid>" then rename over path. Throws iris::Error naming the file.
+/// attributes, atomically (core/io/atomic_file.h). Throws iris::Error naming the file.
 void writeEXR(const std::string& path, const Image& img, const ImageMetadata& meta = {});
 
 /// Write an 8-bit LDR image (PNG/JPEG by extension; PNG with core/io/png_writer.h, anything else

@@ -56,7 +56,11 @@ Dictionary readDictionary(const std::string& d, const std::string& path) {
     for (uint32_t i = 0; i < count; ++i) {
         const size_t at = size_t(dict.end + i * entry);
         const uint64_t off = entry == 8 ? readLE<uint64_t>(d, at) : readLE<uint32_t>(d, at);
-        if (off + 4 > dict.end || (i > 0 && off < dict.offsets.back() + 4))
+        // Each shape holds at least its 4-byte header; no "off + 4", which wraps for offsets
+        // near 2^64 (found by fuzz_serialized, tests/fuzz/corpus/serialized/crash-offset-wraps).
+        const bool pastEnd = off > dict.end || dict.end - off < 4;
+        const bool overlaps = i > 0 && (off < dict.offsets.back() || off - dict.offsets.back() < 4);
+        if (pastEnd || overlaps)
             fail(path, ": corrupt shape dictionary (offset of shape ", i, ")");
         dict.offsets.push_back(off);
     }
