@@ -84,6 +84,9 @@ Spectral transport
   --spectral-samples N     wavelengths per path in spectral mode, 1..32 (default 4)
   --rgb-wavelengths R,G,B  channel wavelengths in nm for RGB mode (default %s)
   --uniform-wavelengths    sample wavelengths uniformly instead of by visible importance
+  --wavelength-sampling hero|independent
+                           hero (default): N stratified rotations of one sample (Wilkie et al.
+                           2014); independent: N independent wavelengths (ablation)
 Scene
   -D name=value            override a <default> parameter of the scene (repeatable)
 Robustness
@@ -189,6 +192,12 @@ int main(int argc, char** argv) {
                 if (!(x >= kLambdaMin && x <= kLambdaMax)) usageError("--rgb-wavelengths must lie in [360, 830] nm");
             opt.rgbWavelengths = vec3(l[0], l[1], l[2]);
         } else if (a == "--uniform-wavelengths") opt.uniformWavelengths = true;
+        else if (a == "--wavelength-sampling") {
+            const std::string m = value();
+            if (m == "hero") opt.independentWavelengths = false;
+            else if (m == "independent") opt.independentWavelengths = true;
+            else usageError("invalid value '" + m + "' for --wavelength-sampling (expected hero or independent)");
+        }
         else if (a == "-D") {
             const std::string d = value();
             const size_t eq = d.find('=');
@@ -250,6 +259,7 @@ int main(int argc, char** argv) {
             {"iris.spectral_samples", std::to_string(opt.rgbMode ? 3 : opt.spectralSamples)},
             {"iris.rgb_wavelengths", opt.rgbMode ? strCat(opt.rgbWavelengths.x, ",", opt.rgbWavelengths.y, ",", opt.rgbWavelengths.z) : std::string("")},
             {"iris.wavelength_pdf", opt.rgbMode ? "fixed" : (opt.uniformWavelengths ? "uniform" : "visible")},
+            {"iris.wavelength_sampling", opt.rgbMode ? "fixed" : (opt.independentWavelengths ? "independent" : "hero")},
             {"iris.spp", std::to_string(st.sppMin)},
             {"iris.spp_max", std::to_string(st.sppMax)},
             {"iris.spp_target", std::to_string(renderer.targetSpp())},

@@ -22,6 +22,13 @@ namespace {
 constexpr int kTile = 16;
 using Clock = std::chrono::steady_clock;
 
+/// --wavelength-sampling independent: one primary sample per wavelength, drawn in order.
+SampledWavelengths independentWavelengths(Sampler& sampler, const RenderOptions& opt) {
+    float u[kMaxWavelengths];
+    for (int i = 0; i < opt.spectralSamples; ++i) u[i] = sampler.get1D();
+    return SampledWavelengths::sampleIndependent(u, opt.spectralSamples, opt.uniformWavelengths);
+}
+
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// Prints "[=====>    ] 45% 12/27 spp  ETA 3.2 s" on stderr at most 4 times a second.
@@ -104,6 +111,7 @@ std::string Renderer::settingsKey() const {
     return strCat("scene=", scene_.description().sourceFile, ";mode=", opt_.rgbMode ? "rgb" : "spectral",
                   ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
+                  opt_.independentWavelengths ? ";wavelengths=independent" : "",
                   ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", scene_.description().integrator.type,
                   ";maxdepth=", scene_.description().integrator.maxDepth);
 }
@@ -176,6 +184,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         const uint64_t pixelIndex = uint64_t(y) * w + x;
                         Sampler sampler(opt_.seed, pixelIndex, uint64_t(s));
                         SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
+                                                : opt_.independentWavelengths ? independentWavelengths(sampler, opt_)
                                                 : opt_.uniformWavelengths
                                                     ? SampledWavelengths::sampleUniform(sampler.get1D(), opt_.spectralSamples)
                                                     : SampledWavelengths::sampleVisible(sampler.get1D(), opt_.spectralSamples);

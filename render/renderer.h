@@ -24,6 +24,7 @@ struct RenderOptions {
     int spectralSamples = 4;       // N wavelengths per path in spectral mode
     vec3 rgbWavelengths = defaultChannelWavelengths();
     bool uniformWavelengths = false;  // ablation: uniform instead of visible-importance wavelength pdf
+    bool independentWavelengths = false;  // ablation: N independent wavelengths instead of hero rotations
     bool progress = false;         // progress bar with ETA on stderr
     std::string checkpointPath;    // "" = no checkpoints
     double checkpointEvery = 0;    // seconds between checkpoints (0 = only at the end/interrupt)

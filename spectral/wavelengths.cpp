@@ -107,6 +107,21 @@ SampledWavelengths SampledWavelengths::sampleUniform(float u, int n) {
     return wl;
 }
 
+SampledWavelengths SampledWavelengths::sampleIndependent(const float* u, int n, bool uniform) {
+    if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
+    SampledWavelengths wl;
+    wl.n_ = n;
+    const float range = kLambdaMax - kLambdaMin;
+    for (int i = 0; i < n; ++i) {
+        const VisibleSample vs = uniform ? VisibleSample{kLambdaMin + u[i] * range, 1.0f / range} : sampleVisibleAt(u[i]);
+        wl.lambda_[i] = std::min(vs.lambda, kLambdaMax);
+        wl.pdf_[i] = vs.pdf;
+    }
+    clearPadding(n, wl.lambda_, wl.pdf_);
+    cie::d65Lanes(wl.lambda_, SampledSpectrum::paddedSize(n), wl.d65_);
+    return wl;
+}
+
 SampledWavelengths SampledWavelengths::rgb(const vec3& channelLambdas) {
     SampledWavelengths wl;
     wl.n_ = 3;

@@ -53,6 +53,10 @@ public:
     static SampledWavelengths sampleVisible(float u, int n);
     /// Uniform sampling on [360, 830] (for tests and ablations of the wavelength pdf).
     static SampledWavelengths sampleUniform(float u, int n);
+    /// Independent wavelengths (the ablation against the hero scheme of Wilkie et al. 2014):
+    /// wavelength i from its own primary sample u[i], i < n, by the visible pdf or uniformly.
+    /// Same marginal pdf per wavelength as the hero scheme, no stratification between them.
+    static SampledWavelengths sampleIndependent(const float* u, int n, bool uniform);
     /// RGB mode: three channels at the given wavelengths (nm), pdf 1; values are linear Rec.709.
     static SampledWavelengths rgb(const vec3& channelLambdas);
 

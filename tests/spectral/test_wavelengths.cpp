@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/error.h"
 #include "core/rng.h"
 #include "spectral/wavelengths.h"
 
@@ -128,4 +129,26 @@ TEST(Wavelengths, SampledPdfIsTheDensityAtTheSampledWavelength) {
         const SampledWavelengths wl = SampledWavelengths::sampleVisible(u, 1);
         EXPECT_NEAR(wl.pdf(0), visibleWavelengthPdf(wl.lambda(0)), 2e-6f * wl.pdf(0));
     }
+}
+
+TEST(Wavelengths, IndependentWavelengthsUseOneSampleEachWithTheSameMarginalPdf) {
+    const float u[5] = {0.1f, 0.93f, 0.5f, 0.02f, 0.77f};
+    const SampledWavelengths wl = SampledWavelengths::sampleIndependent(u, 5, false);
+    ASSERT_EQ(wl.size(), 5);
+    for (int i = 0; i < 5; ++i) {
+        // Each is what the hero scheme would give for that primary sample with n = 1.
+        const SampledWavelengths one = SampledWavelengths::sampleVisible(u[i], 1);
+        EXPECT_EQ(wl.lambda(i), one.lambda(0)) << i;
+        EXPECT_EQ(wl.pdf(i), one.pdf(0)) << i;
+    }
+    const SampledWavelengths uni = SampledWavelengths::sampleIndependent(u, 5, true);
+    for (int i = 0; i < 5; ++i) {
+        EXPECT_FLOAT_EQ(uni.lambda(i), kLambdaMin + u[i] * (kLambdaMax - kLambdaMin));
+        EXPECT_FLOAT_EQ(uni.pdf(i), 1.0f / (kLambdaMax - kLambdaMin));
+    }
+    // Not stratified: two equal primary samples give two equal wavelengths (the hero scheme never does).
+    const float same[2] = {0.3f, 0.3f};
+    const SampledWavelengths twice = SampledWavelengths::sampleIndependent(same, 2, false);
+    EXPECT_EQ(twice.lambda(0), twice.lambda(1));
+    EXPECT_THROW(SampledWavelengths::sampleIndependent(u, 0, false), Error);
 }
