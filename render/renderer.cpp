@@ -108,7 +108,7 @@ std::string Renderer::settingsKey() const {
                   ";maxdepth=", scene_.description().integrator.maxDepth);
 }
 
-RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const {
+RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral) const {
     const auto start = Clock::now();
     const Camera camera(scene_.description().camera);
     if (film.width() != camera.width() || film.height() != camera.height()) fail("film and camera sizes differ");
@@ -119,6 +119,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const 
     if (opt_.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt_.threads);
 
     const int w = film.width(), h = film.height();
+    if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (not --mode rgb)");
+    if (spectral && film.totalSamples() > 0) fail("a spectral image cannot be resumed from a checkpoint");
     const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile;
     const int nTiles = tilesX * tilesY;
 
@@ -187,6 +189,9 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel) const 
                         if (!isFinite(value) || L.hasNegative()) {
                             ++ts.invalid;
                             value = vec3(0.0f);
+                            if (spectral) spectral->addZero(x, y);
+                        } else if (spectral) {
+                            spectral->addSample(x, y, L, wl);
                         }
                         film.addSample(x, y, value);
                     }

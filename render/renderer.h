@@ -11,6 +11,7 @@
 
 #include "render/film.h"
 #include "render/scene.h"
+#include "render/spectral_film.h"
 
 namespace iris {
 
@@ -45,7 +46,8 @@ class Renderer {
 public:
     Renderer(const Scene& scene, const RenderOptions& options);
     /// Render into `film`; `cancel` may be set asynchronously (signal handler) to stop early.
-    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr) const;
+    /// `spectral`, if given (spectral mode only), also receives every sample per wavelength bin.
+    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr, SpectralFilm* spectral = nullptr) const;
     /// String identifying everything that determines the image (checkpoint compatibility).
     std::string settingsKey() const;
     int targetSpp() const { return spp_; }

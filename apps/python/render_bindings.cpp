@@ -2,7 +2,7 @@
 // (render/loader/scene_loader.h); render runs the Renderer (render/renderer.h) on a worker thread
 // with the GIL released, while the calling thread wakes every 50 ms to deliver Python signals
 // (Ctrl-C → KeyboardInterrupt cancels the render, which keeps what was rendered) and to call the
-// progress callback. The image is converted and described by render/render_output.h, exactly as
+// progress callback (and, with spectral_bins, a per-wavelength image: render/spectral_film.h). The image is converted and described by render/render_output.h, exactly as
 // the `render` executable does, so both give the same pixels for the same scene, seed and spp.
 #include <chrono>
 #include <condition_variable>
@@ -48,14 +48,16 @@ struct RenderOutput {
     ImageMetadata metadata;
     RenderStats stats;
     bool keyboardInterrupt = false;  // stopped by Ctrl-C (the package raises RenderInterrupted)
+    std::vector<float> spectral, spectralLambdas;  // (H, W, bins) per-wavelength image and bin centres
 };
 
 /// Renders on a worker thread; the caller (holding the GIL) polls signals and progress.
 class BackgroundRender {
 public:
-    BackgroundRender(const Renderer& renderer, Film& film) : thread_([this, &renderer, &film] {
+    BackgroundRender(const Renderer& renderer, Film& film, SpectralFilm* spectral)
+        : thread_([this, &renderer, &film, spectral] {
         try {
-            stats_ = renderer.render(film, &cancel_);
+            stats_ = renderer.render(film, &cancel_, spectral);
         } catch (...) {
             error_ = std::current_exception();
         }
@@ -93,8 +95,8 @@ private:
     std::thread thread_;  // last: starts after the members above exist
 };
 
-RenderOutput render(const PyScene& s, RenderOptions opt, const std::string& outputSpace, const std::string& ocioConfig,
-                    const py::object& progress) {
+RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const std::string& outputSpace,
+                    const std::string& ocioConfig, const py::object& progress) {
     const ColorManager colors(ocioConfig);
     if (!colors.hasColorSpace(outputSpace))
         fail("colorspace: '", outputSpace, "' is not in ", colors.configPath());
@@ -104,11 +106,13 @@ RenderOutput render(const PyScene& s, RenderOptions opt, const std::string& outp
     const Renderer renderer(*s.scene, opt);
     const CameraDescription& cam = s.scene->description().camera;
     Film film(cam.width, cam.height);
+    std::unique_ptr<SpectralFilm> spectral;
+    if (spectralBins > 0) spectral = std::make_unique<SpectralFilm>(cam.width, cam.height, spectralBins);
 
     RenderOutput out;
     std::unique_ptr<py::error_already_set> pythonError;  // raised by the progress callback or a signal handler
     {
-        BackgroundRender job(renderer, film);
+        BackgroundRender job(renderer, film, spectral.get());
         bool finished = false;
         while (!finished) {
             finished = job.waitFor(50);
@@ -138,13 +142,18 @@ RenderOutput render(const PyScene& s, RenderOptions opt, const std::string& outp
     out.counts.resize(size_t(film.width()) * film.height());
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) out.counts[size_t(y) * film.width() + x] = film.sampleCount(x, y);
+    if (spectral) {
+        out.spectral = spectral->meanImage();
+        for (int b = 0; b < spectral->bins(); ++b) out.spectralLambdas.push_back(spectral->binCenter(b));
+    }
     out.metadata = renderMetadata(*s.scene, s.path, renderer, opt, out.stats, colors, outputSpace);
     return out;
 }
 
 py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t seed, int threads, bool rgbMode,
                         int spectralSamples, const std::vector<float>& rgbWavelengths, bool uniformWavelengths,
-                        const std::string& outputSpace, const std::string& ocioConfig, const py::object& progress) {
+                        int spectralBins, const std::string& outputSpace, const std::string& ocioConfig,
+                        const py::object& progress) {
     RenderOptions opt;
     opt.spp = spp;
     opt.timeLimit = timeLimit;
@@ -154,12 +163,17 @@ py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t se
     opt.spectralSamples = spectralSamples;
     if (!rgbWavelengths.empty()) opt.rgbWavelengths = vec3(rgbWavelengths[0], rgbWavelengths[1], rgbWavelengths[2]);
     opt.uniformWavelengths = uniformWavelengths;
-    RenderOutput r = render(s, opt, outputSpace, ocioConfig, progress);
+    RenderOutput r = render(s, opt, spectralBins, outputSpace, ocioConfig, progress);
     const py::ssize_t h = r.image.height, w = r.image.width;
     py::dict d;
     d["image"] = ownedArray(std::move(r.image.pixels), {h, w, 3});
     d["variance"] = ownedArray(std::move(r.variance), {h, w, 3});
     d["sample_count"] = ownedArray(std::move(r.counts), {h, w});
+    if (spectralBins > 0) {
+        const py::ssize_t bins = py::ssize_t(r.spectralLambdas.size());
+        d["spectral"] = ownedArray(std::move(r.spectral), {h, w, bins});
+        d["spectral_wavelengths"] = ownedArray(std::move(r.spectralLambdas), {bins});
+    }
     py::dict meta;
     for (const auto& [k, v] : r.metadata) meta[py::str(k)] = v;
     d["metadata"] = meta;
@@ -198,7 +212,7 @@ void bindRender(py::module_& m) {
     m.def("load_string", &loadString, py::arg("xml"), py::arg("base_dir"), py::arg("defines"));
     m.def("render", &renderToPython, py::arg("scene"), py::arg("spp"), py::arg("time_limit"), py::arg("seed"),
           py::arg("threads"), py::arg("rgb_mode"), py::arg("spectral_samples"), py::arg("rgb_wavelengths"),
-          py::arg("uniform_wavelengths"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
+          py::arg("uniform_wavelengths"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
     m.def("source_path", &sourcePath, py::arg("relative"));
 }
 

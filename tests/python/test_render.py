@@ -65,6 +65,20 @@ class RenderEqualsCLI(unittest.TestCase):
     def test_other_colorspace_equals_cli(self):
         self.compare(dict(spp=1, colorspace="CIE-XYZ"), ["--spp", "1", "--output-space", "CIE-XYZ"])
 
+    def test_spectral_image_integrates_to_the_xyz_image(self):
+        scene = iris.load_file(SCENE, res=16)
+        r = iris.render(scene, spp=4, seed=2, colorspace="CIE-XYZ", spectral_bins=47)  # 10 nm bins
+        self.assertEqual(r.spectral.shape, (16, 16, 47))
+        self.assertEqual(r.spectral_wavelengths[0], 365.0)
+        plain = iris.render(scene, spp=4, seed=2, colorspace="CIE-XYZ")
+        np.testing.assert_array_equal(r.image, plain.image)  # the spectral image changes nothing else
+        # Σ_b S_b x̄(λ_b) Δ / ∫ȳ: the film's XYZ estimator with the CMFs constant over each bin.
+        cmf = iris.color.xyz_bar(r.spectral_wavelengths)
+        xyz = r.spectral.reshape(-1, 47) @ cmf * 10.0 / iris.color.y_integral()
+        np.testing.assert_allclose(xyz.mean(axis=0), r.image.reshape(-1, 3).mean(axis=0), rtol=0.03)
+        with self.assertRaisesRegex(iris.Error, "spectral"):
+            iris.render(scene, spp=1, mode="rgb", spectral_bins=10)
+
     def test_different_seed_differs(self):
         scene = iris.load_file(SCENE, res=16)
         a, b = iris.render(scene, spp=1, seed=1), iris.render(scene, spp=1, seed=2)

@@ -48,7 +48,8 @@ class RenderResult:
     sample_count: np.ndarray   # (H, W) uint32
     metadata: dict             # the "iris.*" header of the EXR the CLI writes
     stats: dict                # seconds, rays, paths, invalid_samples, spp_min, spp_max, ...
-    spectral: np.ndarray | None = None  # the film stores XYZ only: always None (docs/python.md)
+    spectral: np.ndarray | None = None  # (H, W, bins) float32 with spectral_bins > 0, else None
+    spectral_wavelengths: np.ndarray | None = None  # bin centres (nm)
     interrupted: bool = False  # stopped before reaching spp (Ctrl-C)
 
     @property
@@ -104,14 +105,16 @@ def _count(name: str, value, lo: int, hi: int | None = None) -> int:
 def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", spectral_samples: int = 4,
            seed: int = 0, threads: int = 0, time_limit: float | None = None, sampler: str | None = None,
            colorspace: str = "lin_rec709", rgb_wavelengths=None, uniform_wavelengths: bool = False,
-           progress=None, ocio_config: str | None = None) -> RenderResult:
+           progress=None, ocio_config: str | None = None, spectral_bins: int = 0) -> RenderResult:
     """Render `scene` (from load_file / load_string). The options are the `render` executable's:
     spp (None: the scene's sampler sample_count; 0 with time_limit: render until the time is up),
     mode "spectral" (spectral_samples wavelengths per path) or "rgb", seed, threads (0: all cores),
     time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
     rgb_wavelengths (R, G, B in nm), uniform_wavelengths. `sampler` may only be "independent":
     the renderer has one sample sequence (a PCG32 stream per pixel and sample). `progress`: a
-    callable receiving the fraction done, or True for a bar on stderr."""
+    callable receiving the fraction done, or True for a bar on stderr. `spectral_bins` > 0 (spectral
+    mode) also returns `spectral`: per pixel the spectral radiance averaged over that many equal
+    wavelength bins on 360–830 nm (render/spectral_film.h), estimated from the same samples."""
     if not isinstance(scene, _iris.Scene):
         raise TypeError(f"scene: expected an iris.Scene (from iris.load_file or iris.load_string), got {type(scene).__name__}")
     if mode not in ("spectral", "rgb"):
@@ -125,6 +128,9 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         limit = float(time_limit)
         if not math.isfinite(limit) or limit <= 0:
             raise _iris.Error(f"time_limit: must be > 0 seconds, got {time_limit!r}")
+    bins = _count("spectral_bins", spectral_bins, 0, 470)
+    if bins and mode == "rgb":
+        raise _iris.Error("spectral_bins: a spectral image needs mode='spectral'")
     if spp == 0 and limit == 0:
         raise _iris.Error("spp = 0 renders until time_limit: give time_limit too")
     callback = _TextProgress() if progress is True else (progress or None)
@@ -132,9 +138,10 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         raise TypeError("progress: expected a callable taking the fraction done, or True")
     d = _iris.render(scene, spp, limit, _count("seed", seed, 0, 2**63 - 1), _count("threads", threads, 0),
                      mode == "rgb", _count("spectral_samples", spectral_samples, 1, 32),
-                     _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths), colorspace, ocio_config or "",
+                     _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths), bins, colorspace, ocio_config or "",
                      callback)
     result = RenderResult(d["image"], d["variance"], d["sample_count"], d["metadata"], d["stats"],
+                          spectral=d.get("spectral"), spectral_wavelengths=d.get("spectral_wavelengths"),
                           interrupted=bool(d["stats"]["interrupted"]))
     if d["keyboard_interrupt"]:
         raise RenderInterrupted(result)

@@ -16,6 +16,7 @@ class RenderResult:
     metadata: dict[str, str]
     stats: dict[str, Any]
     spectral: np.ndarray | None
+    spectral_wavelengths: np.ndarray | None
     interrupted: bool
     @property
     def spp(self) -> int: ...
@@ -28,4 +29,5 @@ class RenderInterrupted(KeyboardInterrupt):
 def render(scene: Scene, spp: int | None = ..., mode: str = ..., spectral_samples: int = ..., seed: int = ...,
            threads: int = ..., time_limit: float | None = ..., sampler: str | None = ..., colorspace: str = ...,
            rgb_wavelengths: Any = ..., uniform_wavelengths: bool = ...,
-           progress: Callable[[float], object] | bool | None = ..., ocio_config: str | None = ...) -> RenderResult: ...
+           progress: Callable[[float], object] | bool | None = ..., ocio_config: str | None = ...,
+           spectral_bins: int = ...) -> RenderResult: ...
