@@ -19,6 +19,7 @@
 #include "core/io/spectral_layout.h"
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
+#include "render/render_output.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "spectral/color_management.h"
@@ -245,34 +246,9 @@ int main(int argc, char** argv) {
         std::signal(SIGINT, SIG_DFL);
         std::signal(SIGTERM, SIG_DFL);
 
-        // Film values → output colour space, through OpenColorIO.
-        Image img(film.width(), film.height(), 3);
-        img.pixels = film.meanImage();
-        const std::string filmSpace = opt.rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ;
-        Image out = img;
-        colors.convert(out.pixels.data(), out.pixelCount(), filmSpace, outputSpace);
-
-        ImageMetadata meta = {
-            {"iris.version", IRIS_VERSION},
-            {"iris.scene", scenePath},
-            {"iris.mode", opt.rgbMode ? "rgb" : "spectral"},
-            {"iris.spectral_samples", std::to_string(opt.rgbMode ? 3 : opt.spectralSamples)},
-            {"iris.rgb_wavelengths", opt.rgbMode ? strCat(opt.rgbWavelengths.x, ",", opt.rgbWavelengths.y, ",", opt.rgbWavelengths.z) : std::string("")},
-            {"iris.wavelength_pdf", opt.rgbMode ? "fixed" : (opt.uniformWavelengths ? "uniform" : "visible")},
-            {"iris.wavelength_sampling", opt.rgbMode ? "fixed" : (opt.independentWavelengths ? "independent" : "hero")},
-            {"iris.spp", std::to_string(st.sppMin)},
-            {"iris.spp_max", std::to_string(st.sppMax)},
-            {"iris.spp_target", std::to_string(renderer.targetSpp())},
-            {"iris.seed", std::to_string(opt.seed)},
-            {"iris.render_time_s", strCat(st.seconds)},
-            {"iris.rays", std::to_string(st.rays)},
-            {"iris.invalid_samples", std::to_string(st.invalidSamples)},
-            {"iris.interrupted", st.interrupted ? "1" : "0"},
-            {"iris.integrator", scene.description().integrator.type},
-            {"iris.max_depth", std::to_string(scene.description().integrator.maxDepth)},
-            {"iris.colorspace", outputSpace},
-            {"iris.ocio_config", colors.configPath()},
-        };
+        // Film values → output colour space, through OpenColorIO (render/render_output.h).
+        const Image out = filmImage(film, opt, colors, outputSpace);
+        const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
         const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
                              std::filesystem::path(output).extension() == ".jpg";
         if (!pngOnly) writeEXR(output, out, meta);
@@ -283,8 +259,9 @@ int main(int argc, char** argv) {
             writeEXR(spectralOutput, spectral->image(), spectralMeta);
         }
         if (pngOnly || writePng) {
-            Image ldr = img;
-            colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmSpace, display, view);
+            Image ldr(film.width(), film.height(), 3);
+            ldr.pixels = film.meanImage();
+            colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmColorSpace(opt), display, view);
             writeLDR(pngOnly ? output : replaceExtension(output, ".png"), ldr);
         }
         std::fprintf(stderr, "%s: %u spp%s in %.2f s, %.3g rays/s, %llu invalid samples%s\n", output.c_str(), st.sppMin,

@@ -207,10 +207,12 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                     }
                 const int done = ++tilesDone;
                 if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);
-                if (opt_.progress) {
+                if (opt_.progress || opt_.progressOut) {
                     const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit
                                                      : (double(s - firstSample) + double(done) / nTiles) / double(target - firstSample);
-                    progress.update(frac, strCat(s + 1, "/", unlimitedSpp ? std::string("?") : std::to_string(target), " spp"));
+                    if (opt_.progressOut) opt_.progressOut->store(frac, std::memory_order_relaxed);
+                    if (opt_.progress)
+                        progress.update(frac, strCat(s + 1, "/", unlimitedSpp ? std::string("?") : std::to_string(target), " spp"));
                 }
             }
         });

@@ -26,6 +26,8 @@ struct RenderOptions {
     bool uniformWavelengths = false;  // ablation: uniform instead of visible-importance wavelength pdf
     bool independentWavelengths = false;  // ablation: N independent wavelengths instead of hero rotations
     bool progress = false;         // progress bar with ETA on stderr
+    std::atomic<double>* progressOut = nullptr;  // if set, the fraction done (0..1) is stored here
+                                                 // as tiles finish (the Python module's callback)
     std::string checkpointPath;    // "" = no checkpoints
     double checkpointEvery = 0;    // seconds between checkpoints (0 = only at the end/interrupt)
     bool resume = false;           // continue from checkpointPath

@@ -135,6 +135,21 @@ SampledWavelengths SampledWavelengths::rgb(const vec3& channelLambdas) {
     return wl;
 }
 
+SampledWavelengths SampledWavelengths::fixed(const float* lambdas, int n) {
+    if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
+    SampledWavelengths wl;
+    wl.n_ = n;
+    for (int i = 0; i < n; ++i) {
+        if (!(lambdas[i] >= kLambdaMin && lambdas[i] <= kLambdaMax))
+            fail("wavelength ", lambdas[i], " nm is outside [", kLambdaMin, ", ", kLambdaMax, "] nm");
+        wl.lambda_[i] = lambdas[i];
+        wl.pdf_[i] = 1.0f;
+    }
+    clearPadding(n, wl.lambda_, wl.pdf_);
+    cie::d65Lanes(wl.lambda_, SampledSpectrum::paddedSize(n), wl.d65_);
+    return wl;
+}
+
 void SampledWavelengths::terminateSecondary() {
     if (rgb_ || secondaryTerminated()) return;
     for (int i = 1; i < n_; ++i) pdf_[i] = 0.0f;

@@ -59,6 +59,9 @@ public:
     static SampledWavelengths sampleIndependent(const float* u, int n, bool uniform);
     /// RGB mode: three channels at the given wavelengths (nm), pdf 1; values are linear Rec.709.
     static SampledWavelengths rgb(const vec3& channelLambdas);
+    /// Spectral mode at n given wavelengths (nm, in [kLambdaMin, kLambdaMax]), pdf 1 each: for
+    /// evaluating materials at chosen wavelengths (the Python module's BSDF queries).
+    static SampledWavelengths fixed(const float* lambdas, int n);
 
     int size() const { return n_; }
     bool isRGB() const { return rgb_; }

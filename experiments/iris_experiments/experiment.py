@@ -14,7 +14,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from . import collect, html_report, report, runner, scenes, slurm, sweep, tools
+from . import collect, html_report, inprocess, report, runner, scenes, slurm, sweep, tools
 from .errors import ExperimentError
 
 
@@ -107,6 +107,9 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--skip-missing", action="store_true",
                    help="leave out scenes that are not available (with a warning) instead of stopping")
     p.add_argument("--collect-only", action="store_true", help="only collect results of finished renders")
+    p.add_argument("--in-process", action="store_true",
+                   help="render through the Python module in this process (scenes loaded once, same images); "
+                        "not for timings or --slurm (iris_experiments/inprocess.py)")
     p.add_argument("--shard", default=None, metavar="I/N",
                    help="render only jobs whose index is I modulo N (several machines or sessions); no report "
                         "until --collect-only after every shard")
@@ -202,6 +205,8 @@ def _run(exp: Experiment, args) -> int:
         for j in jobs:
             print(j.shell())
         return 0
+    if args.in_process and (args.slurm or shard):
+        raise ExperimentError("--in-process renders here and now: it cannot be combined with --slurm or --shard")
     if args.slurm:
         script = slurm.write_slurm_script(out / f"slurm_{exp.name}.sh", jobs, job_name=f"iris-{exp.name}",
                                           time=args.slurm_time, cpus_per_task=args.slurm_cpus, mem=args.slurm_mem,
@@ -227,7 +232,10 @@ def _run(exp: Experiment, args) -> int:
         return 0
     if not args.collect_only:
         print(f"{exp.name}: {len(jobs)} render jobs -> {out}")
-        results = runner.run_local(jobs, parallel=args.parallel, force=args.force, timeout=args.timeout)
+        if args.in_process:
+            results = inprocess.run_inprocess(jobs, bdir, force=args.force)
+        else:
+            results = runner.run_local(jobs, parallel=args.parallel, force=args.force, timeout=args.timeout)
         failed = [r for r in results if not r.ok]
         if failed:
             lines = [f"{r.job.output.with_suffix('.log')}: {r.message}" for r in failed[:5]]

@@ -1,0 +1,148 @@
+"""Scenes and rendering: the scene loader and the renderer of the `render` executable, in-process.
+
+The render runs on a C++ thread with the GIL released; the calling thread wakes every 50 ms to
+deliver signals (Ctrl-C stops the render: `RenderInterrupted`, a KeyboardInterrupt, carries the
+partial result) and to call `progress`. Pixels equal the executable's for the same scene, seed,
+spp and mode (the same code converts and describes them, render/render_output.h).
+"""
+from __future__ import annotations
+
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _iris
+from ._arrays import rgb_wavelengths as _rgb_wavelengths
+
+
+def _defines(defines: dict) -> dict:
+    """-D name=value overrides as strings (booleans as the XML's true/false)."""
+    out = {}
+    for k, v in defines.items():
+        out[str(k)] = ("true" if v else "false") if isinstance(v, bool) else str(v)
+    return out
+
+
+def load_file(path, **defines) -> _iris.Scene:
+    """Load a Mitsuba XML scene file; keyword arguments override its <default> values (like
+    `render -D name=value`). Raises iris.Error "file:line: message" on bad input."""
+    return _iris.load_file(os.fspath(path), _defines(defines))
+
+
+def load_string(xml: str, base_dir=None, **defines) -> _iris.Scene:
+    """Load scene XML held in a string; relative paths resolve against `base_dir` (default: the
+    current directory); messages name "<string>:line"."""
+    return _iris.load_string(xml, os.fspath(base_dir) if base_dir is not None else os.getcwd(), _defines(defines))
+
+
+@dataclass
+class RenderResult:
+    """What a render returns: the image in the chosen colour space, the variance of each pixel's
+    mean (in the film's space: CIE XYZ in spectral mode, linear Rec.709 in RGB mode), the samples
+    per pixel, the EXR metadata and the render statistics."""
+    image: np.ndarray          # (H, W, 3) float32
+    variance: np.ndarray       # (H, W, 3) float32
+    sample_count: np.ndarray   # (H, W) uint32
+    metadata: dict             # the "iris.*" header of the EXR the CLI writes
+    stats: dict                # seconds, rays, paths, invalid_samples, spp_min, spp_max, ...
+    spectral: np.ndarray | None = None  # (H, W, bins) float32 with spectral_bins > 0, else None
+    spectral_wavelengths: np.ndarray | None = None  # bin centres (nm)
+    interrupted: bool = False  # stopped before reaching spp (Ctrl-C)
+
+    @property
+    def spp(self) -> int:
+        return int(self.stats["spp_min"])
+
+    def write(self, path) -> None:
+        """Write the image and its metadata as the `render` executable would (EXR only, no PNG)."""
+        from .images import write
+        write(path, self.image, self.metadata)
+
+
+class RenderInterrupted(KeyboardInterrupt):
+    """Ctrl-C during iris.render: the render stopped between tiles; `result` holds what was done."""
+
+    def __init__(self, result: RenderResult):
+        super().__init__(f"render interrupted after {result.stats['spp_min']} spp")
+        self.result = result
+
+
+class _TextProgress:
+    """A tqdm-style bar on stderr (tqdm itself when it is installed)."""
+
+    def __init__(self):
+        try:
+            from tqdm import tqdm  # optional
+            self._bar = tqdm(total=1000, unit="‰", leave=False)
+        except ImportError:
+            self._bar = None
+        self._last = -1
+
+    def __call__(self, fraction: float) -> None:
+        permille = int(1000 * fraction)
+        if self._bar is not None:
+            self._bar.update(max(0, permille - self._bar.n))
+            if fraction >= 1:
+                self._bar.close()
+        elif permille // 10 != self._last:
+            self._last = permille // 10
+            bar = "#" * (permille // 25)
+            sys.stderr.write(f"\r[{bar:<40}] {permille / 10:5.1f}%" + ("\n" if fraction >= 1 else ""))
+            sys.stderr.flush()
+
+
+def _count(name: str, value, lo: int, hi: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an integer, got {value!r}")
+    if value < lo or (hi is not None and value > hi):
+        raise _iris.Error(f"{name}: {value} is outside [{lo}, {hi if hi is not None else '∞'}]")
+    return int(value)
+
+
+def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", spectral_samples: int = 4,
+           seed: int = 0, threads: int = 0, time_limit: float | None = None, sampler: str | None = None,
+           colorspace: str = "lin_rec709", rgb_wavelengths=None, uniform_wavelengths: bool = False,
+           progress=None, ocio_config: str | None = None, spectral_bins: int = 0) -> RenderResult:
+    """Render `scene` (from load_file / load_string). The options are the `render` executable's:
+    spp (None: the scene's sampler sample_count; 0 with time_limit: render until the time is up),
+    mode "spectral" (spectral_samples wavelengths per path) or "rgb", seed, threads (0: all cores),
+    time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
+    rgb_wavelengths (R, G, B in nm), uniform_wavelengths. `sampler` may only be "independent":
+    the renderer has one sample sequence (a PCG32 stream per pixel and sample). `progress`: a
+    callable receiving the fraction done, or True for a bar on stderr. `spectral_bins` > 0 (spectral
+    mode) also returns `spectral`: per pixel the spectral radiance averaged over that many equal
+    wavelength bins on 360–830 nm (render/spectral_film.h), estimated from the same samples."""
+    if not isinstance(scene, _iris.Scene):
+        raise TypeError(f"scene: expected an iris.Scene (from iris.load_file or iris.load_string), got {type(scene).__name__}")
+    if mode not in ("spectral", "rgb"):
+        raise _iris.Error(f"mode: unknown '{mode}' (expected spectral or rgb)")
+    if sampler not in (None, "independent"):
+        raise _iris.Error(f"sampler: '{sampler}' is not supported (the renderer draws every sample from its own "
+                          "PCG32 stream per pixel and sample index: use None or 'independent')")
+    spp = -1 if spp is None else _count("spp", spp, 0)
+    limit = 0.0
+    if time_limit is not None:
+        limit = float(time_limit)
+        if not math.isfinite(limit) or limit <= 0:
+            raise _iris.Error(f"time_limit: must be > 0 seconds, got {time_limit!r}")
+    bins = _count("spectral_bins", spectral_bins, 0, 470)
+    if bins and mode == "rgb":
+        raise _iris.Error("spectral_bins: a spectral image needs mode='spectral'")
+    if spp == 0 and limit == 0:
+        raise _iris.Error("spp = 0 renders until time_limit: give time_limit too")
+    callback = _TextProgress() if progress is True else (progress or None)
+    if callback is not None and not callable(callback):
+        raise TypeError("progress: expected a callable taking the fraction done, or True")
+    d = _iris.render(scene, spp, limit, _count("seed", seed, 0, 2**63 - 1), _count("threads", threads, 0),
+                     mode == "rgb", _count("spectral_samples", spectral_samples, 1, 32),
+                     _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths), bins, colorspace, ocio_config or "",
+                     callback)
+    result = RenderResult(d["image"], d["variance"], d["sample_count"], d["metadata"], d["stats"],
+                          spectral=d.get("spectral"), spectral_wavelengths=d.get("spectral_wavelengths"),
+                          interrupted=bool(d["stats"]["interrupted"]))
+    if d["keyboard_interrupt"]:
+        raise RenderInterrupted(result)
+    return result
