@@ -31,13 +31,26 @@ std::string readName(std::istream& in, const std::string& path) {
 constexpr uint64_t kMaxBlockLines = 256;         // the most scan lines one block holds (DWAB)
 constexpr uint64_t kMaxBlockBytes = uint64_t(1) << 30;
 
-/// Channels in a "chlist" value: per channel a name, then 16 bytes (type, pLinear, sampling).
-uint64_t channelCount(const std::string& v) {
+/// Value sizes of OpenEXR 3.1's fixed-size attribute types (ImfStandardAttributes, Imf*Attribute),
+/// which it reads whatever size the header declares; 0 for other types.
+int fixedSize(const std::string& type) {
+    static const std::pair<const char*, int> kSizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"double", 8},
+        {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36},
+        {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},
+        {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"deepImageState", 1}};
+    for (const auto& [name, size] : kSizes)
+        if (type == name) return size;
+    return 0;
+}
+
+/// Skip a channel list as OpenEXR reads it: per channel a name, then 16 bytes (type, pLinear,
+/// reserved, sampling), up to an empty name. Returns the channel count.
+uint64_t skipChannelList(std::istream& in, const std::string& path) {
     uint64_t n = 0;
-    for (size_t at = 0; at < v.size() && v[at] != '\0'; ++n) {
-        const size_t end = v.find('\0', at);
-        if (end == std::string::npos) break;
-        at = end + 1 + 16;
+    while (!readName(in, path).empty()) {
+        in.seekg(16, std::ios::cur);
+        ++n;
     }
     return n;
 }
@@ -75,14 +88,30 @@ bool skipHeader(std::istream& in, uint64_t fileSize, uint64_t maxPixels, const s
         const uint64_t left = fileSize - uint64_t(in.tellg());
         if (size < 0 || uint64_t(size) > left)
             fail(path, ": corrupt EXR header: attribute '", name, "' (", type, ") claims ", size, " bytes, the file has ", left, " left");
-        if ((name == "channels" && type == "chlist") || (name == "dataWindow" && type == "box2i")) {
-            std::string value(size_t(size), '\0');
-            if (!in.read(value.data(), size)) fail(path, ": corrupt EXR header: truncated attribute '", name, "'");
-            if (name == "channels") channels = channelCount(value);
-            else dataWindow = value;
+        const uint64_t at = uint64_t(in.tellg());
+        if (type == "chlist") {
+            // OpenEXR reads a channel list up to its terminator, whatever the declared size.
+            channels = skipChannelList(in, path);
+        } else if (type == "preview") {
+            // OpenEXR allocates width * height * 4 bytes for a preview image.
+            uint32_t wh[2] = {0, 0};
+            if (!in.read(reinterpret_cast<char*>(wh), 8)) fail(path, ": corrupt EXR header: truncated preview");
+            if (uint64_t(wh[0]) * wh[1] * 4 > fileSize - at - 8)
+                fail(path, ": corrupt EXR header: preview of ", wh[0], "x", wh[1], " pixels is larger than the file");
+            in.seekg(std::streamoff(uint64_t(wh[0]) * wh[1] * 4), std::ios::cur);
+        } else if (const int fixed = fixedSize(type); fixed > 0) {
+            // OpenEXR reads a fixed-size value's own size, whatever the declared size.
+            if (uint64_t(fixed) > left) fail(path, ": corrupt EXR header: truncated attribute '", name, "'");
+            if (name == "dataWindow" && type == "box2i") {
+                dataWindow.resize(16);
+                in.read(dataWindow.data(), 16);
+            } else {
+                in.seekg(fixed, std::ios::cur);
+            }
         } else {
-            in.seekg(size, std::ios::cur);
+            in.seekg(size, std::ios::cur);  // string, vectors, unknown (opaque) types: the declared size
         }
+        if (!in) fail(path, ": corrupt EXR header: truncated attribute '", name, "'");
     }
 }
 
