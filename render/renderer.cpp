@@ -13,6 +13,7 @@
 
 #include "render/camera.h"
 #include "core/error.h"
+#include "core/tsan_fork_join.h"
 #include "render/integrator.h"
 #include "spectral/xyz.h"
 
@@ -174,7 +175,10 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (stopRequested()) break;
         const auto passStart = Clock::now();
         tilesDone = 0;
+        ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
+        forkJoin.fork();
         tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int>& range) {
+            const ForkJoin::Body body(forkJoin);
             ThreadState& ts = states.local();
             for (int tile = range.begin(); tile != range.end(); ++tile) {
                 if (stopRequested()) return;
@@ -216,6 +220,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                 }
             }
         });
+        forkJoin.join();
         passSeconds = std::chrono::duration<double>(Clock::now() - passStart).count();
         if (tilesDone.load() < nTiles) break;  // stopped mid-pass
         if (checkpoints) {

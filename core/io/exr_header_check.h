@@ -7,6 +7,7 @@
 // empty name.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace iris {
@@ -15,7 +16,9 @@ namespace iris {
 bool hasExrMagic(const std::string& path);
 
 /// Throws iris::Error "path: corrupt EXR header: ..." if an attribute name is unterminated or an
-/// attribute claims more bytes than the file has left. Files without the EXR magic pass.
-void checkExrHeaderSizes(const std::string& path);
+/// attribute claims more bytes than the file has left, and "path: EXR data window ..." if a data
+/// window exceeds `maxPixels` (a power of two) or one block of its scan lines would exceed 1 GB. Files without
+/// the EXR magic pass.
+void checkExrHeaderSizes(const std::string& path, uint64_t maxPixels);
 
 }  // namespace iris

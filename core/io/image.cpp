@@ -268,7 +268,7 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
 
 Image readImage(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
-    checkExrHeaderSizes(path);
+    checkExrHeaderSizes(path, kMaxPixels);
     if (isFlatExr(path)) {
         Image img;
         if (readExrDirect(path, img)) {
@@ -281,14 +281,14 @@ Image readImage(const std::string& path, ImageFileInfo* info) {
 
 Image readImageWithOpenImageIO(const std::string& path, ImageFileInfo* info) {
     checkReadable(path);
-    checkExrHeaderSizes(path);
+    checkExrHeaderSizes(path, kMaxPixels);
     return readThroughModule(path, info);
 }
 
 ImageMetadata readEXRMetadata(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(path, ": file not found");
-    checkExrHeaderSizes(path);
+    checkExrHeaderSizes(path, kMaxPixels);
     ImageMetadata meta;
     try {
         Imf::InputFile file(path.c_str());

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "core/io/atomic_file.h"
 #include "core/io/image.h"
@@ -68,6 +69,20 @@ TEST(AtomicFile, WritesAndReplacesWithoutTemporaries) {
     EXPECT_EQ(strayFiles(dir, file), 0);
     // Temporary names are unique per call, so two writers of one path never share one.
     EXPECT_NE(atomicTempPath(file.string()), atomicTempPath(file.string()));
+}
+
+TEST(AtomicFile, ConcurrentWritersNeverMixTheirFiles) {
+    const fs::path dir = freshDir("concurrent"), file = dir / "out.bin";
+    const std::string a(1 << 16, 'a'), b(1 << 17, 'b');
+    auto writeMany = [&](const std::string& s) {
+        for (int i = 0; i < 40; ++i) writeFileAtomically(file.string(), s);
+    };
+    std::thread t1(writeMany, a), t2(writeMany, b);
+    t1.join();
+    t2.join();
+    const std::string got = contents(file);
+    EXPECT_TRUE(got == a || got == b) << "a mixed file of " << got.size() << " bytes";
+    EXPECT_EQ(strayFiles(dir, file), 0);
 }
 
 TEST(AtomicFile, InjectedDiskFullKeepsTheOldFile) {
