@@ -136,6 +136,7 @@ def main():
     ap.add_argument("--no-images", action="store_true")
     ap.add_argument("--no-instructions", action="store_true")
     ap.add_argument("--quick", action="store_true", help="instructions of the thin-film scene only")
+    ap.add_argument("--only", help="instruction runs whose label matches this regular expression")
     ap.add_argument("--cache", help="JSON file of instruction counts kept across runs")
     ap.add_argument("--jobs", type=int, default=2, help="callgrind runs at once (counts do not depend on it)")
     args = ap.parse_args()
@@ -175,6 +176,8 @@ def main():
               f"The runs of experiments/perf/run.py targets 2 and 3. Accepted: growth ≤ {100 * MAX_GROWTH:g} %.", "",
               "| run | spp | base | new | change |", "|---|---|---|---|---|"]
         runs = INSTRUCTION_RUNS[:4] if args.quick else INSTRUCTION_RUNS
+        if args.only:
+            runs = [r for r in runs if re.search(args.only, r[0])]
         counts = Counts(args.cache)
         tasks = {}
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
