@@ -22,6 +22,7 @@
 //   distribution (beckmann|ggx, beckmann), ws (0.6), wd (0.4), phase (bool, true),
 //   phase_mode ("total"|"per_reflection", "total").
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -67,81 +68,14 @@ public:
     vec3 toCoat(const vec3& w) const { return p_.tilted0 ? p_.coat.toLocal(w) : w; }
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
-        if (wo.z <= 0 || wi.z <= 0) return SampledSpectrum(p_.n);
-        const WoTerms o = woTerms(wo);
-        if (o.woC.z <= 0) return SampledSpectrum(p_.n);
-        const vec3 wiC = toCoat(wi);
-        return evalAt(o, wiC, roughCoatHalf(p_.dist, o.woC, wiC));
-    }
-
-    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode) const override {
-        if (wo.z <= 0) return std::nullopt;
-        const WoTerms o = woTerms(wo);  // once for the sample, its pdf and its value
-        const vec3 woC = o.woC;
-        if (woC.z <= 0) return std::nullopt;
-        BSDFSample s;
-        vec3 wiC;
-        if (uc < o.ps) {  // eqs. 3.23–3.25 (visible normals of the coat)
-            wiC = reflect(woC, p_.dist.sampleNormal(woC, u));
-            s.wi = p_.tilted0 ? p_.coat.toWorld(wiC) : wiC;
-            s.flags = kBSDFReflection | kBSDFGlossy;
-        } else {  // eqs. 3.27–3.28 (cosine lobe about n1)
-            const vec3 l = sampleCosineHemisphere(u);
-            s.wi = p_.tilted1 ? p_.base.toWorld(l) : l;
-            s.flags = kBSDFReflection | kBSDFDiffuse;
-        }
-        if (s.wi.z <= 0) return std::nullopt;
-        // As sampleFromEval: the pdf and value of this BSDF at s.wi (the operations of pdf and eval).
-        wiC = toCoat(s.wi);
-        const RoughCoatHalf half = roughCoatHalf(p_.dist, woC, wiC);
-        s.pdf = pdfAt(o, s.wi, half);
-        if (!(s.pdf > 0)) return std::nullopt;
-        s.f = evalAt(o, wiC, half);
-        return s;
-    }
-
-    /// Mixture density (eq. 3.30 with the selection probabilities): P p_spec + (1 − P) (wi·n1)/π.
-    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
-        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
-        const WoTerms o = woTerms(wo);
-        if (o.woC.z <= 0) return 0.0f;
-        return pdfAt(o, wi, roughCoatHalf(p_.dist, o.woC, toCoat(wi)));
-    }
-
-    uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
-
-private:
-    /// What depends on wo alone, computed once per call (and once for a sample with its pdf and
-    /// value).
-    struct WoTerms {
-        vec3 woC;   // wo in the coat frame
-        float g1o;  // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
-        float ps;   // specular sampling probability (roughCoatSpecularProbability)
-        float tO[kMaxWavelengths];  // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
-    };
-
-    /// Filled for woC.z > 0 (callers return zero / no sample otherwise; only woC is set then).
-    WoTerms woTerms(const vec3& wo) const {
-        WoTerms o;
-        o.woC = toCoat(wo);
-        if (o.woC.z <= 0) return o;
-        const int n = p_.n;
-        o.g1o = 1.0f / (1.0f + p_.dist.Lambda(o.woC));  // MicrofacetDistribution::smithG1's factor
-        p_.coatT.transmittance(o.woC.z, n, o.tO);
-        float t = 0.0f;
-        for (int c = 0; c < n; ++c) t += o.tO[c];
-        o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
-        return o;
-    }
-
-    /// eval for wo.z, wi.z, woC.z > 0, with wiC = wi in the coat frame and half = roughCoatHalf of
-    /// (woC, wiC).
-    SampledSpectrum evalAt(const WoTerms& o, const vec3& wiC, const RoughCoatHalf& half) const {
         const int n = p_.n;
         SampledSpectrum f(n);
-        const vec3 woC = o.woC;
-        if (wiC.z <= 0) return f;
-        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o, half);
+        if (wo.z <= 0 || wi.z <= 0) return f;
+        const WoTerms& o = woTerms(wo);
+        const WiTerms& t = wiTerms(o, wi);
+        const vec3 woC = o.woC, wiC = t.wiC;
+        if (woC.z <= 0 || wiC.z <= 0) return f;
+        const RoughCoatGeometry g = roughCoatGeometry(p_.dist, woC, wiC, o.g1o, t.half);
         float tI[kMaxWavelengths];  // T12 per channel (eq. 2.52); T21 is o.tO (eq. 2.53)
         p_.coatT.transmittance(wiC.z, n, tI);
         for (int c = 0; c < n; ++c) {
@@ -156,7 +90,7 @@ private:
                 continue;
             }
             const float cosTi = filmCosine(k.invEta2, wiC.z);
-            const float cosTo = filmCosine(k.invEta2, woC.z);  // wo refracted into the film
+            const float cosTo = o.cosTo[c];
             const float phi = k.phaseScale * (cosTi + cosTo);  // eq. 3.20
             const float cos2phi = std::cos(2.0f * phi);
             if (p_.phase == PhaseMode::Total) {
@@ -171,11 +105,89 @@ private:
         return f;
     }
 
-    /// pdf for wo.z, wi.z, woC.z > 0 with half = roughCoatHalf of (woC, wi in the coat frame).
-    float pdfAt(const WoTerms& o, const vec3& wi, const RoughCoatHalf& half) const {
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z <= 0) return std::nullopt;
+        const WoTerms& o = woTerms(wo);
+        const vec3 woC = o.woC;
+        if (woC.z <= 0) return std::nullopt;
+        const float ps = o.ps;
+        vec3 wi;
+        uint32_t flags;
+        if (uc < ps) {  // eqs. 3.23–3.25 (visible normals of the coat)
+            const vec3 wiC = reflect(woC, p_.dist.sampleNormal(woC, u));
+            wi = p_.tilted0 ? p_.coat.toWorld(wiC) : wiC;
+            flags = kBSDFReflection | kBSDFGlossy;
+        } else {  // eqs. 3.27–3.28 (cosine lobe about n1)
+            const vec3 l = sampleCosineHemisphere(u);
+            wi = p_.tilted1 ? p_.base.toWorld(l) : l;
+            flags = kBSDFReflection | kBSDFDiffuse;
+        }
+        if (wi.z <= 0) return std::nullopt;
+        return sampleFromEval(wo, wi, flags, mode);
+    }
+
+    /// Mixture density (eq. 3.30 with the selection probabilities): P p_spec + (1 − P) (wi·n1)/π.
+    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        const WoTerms& o = woTerms(wo);
+        if (o.woC.z <= 0) return 0.0f;
         const float ps = o.ps;
         const float cosB = p_.tilted1 ? glm::dot(wi, p_.n1) : wi.z;
-        return ps * roughCoatSpecularPdf(o.woC, o.g1o, half) + (1.0f - ps) * cosineHemispherePdf(cosB);
+        const WiTerms& t = wiTerms(o, wi);
+        return ps * roughCoatSpecularPdf(o.woC, o.g1o, t.half) + (1.0f - ps) * cosineHemispherePdf(cosB);
+    }
+
+    uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy | kBSDFDiffuse; }
+
+private:
+    /// What depends on wo alone. The integrator calls eval, pdf and sample of one shading point with
+    /// the same wo (next-event estimation: eval + pdf; the BSDF sample: pdf + eval), so these are
+    /// computed at the first call with a new wo and reused (pure functions of wo: the same values
+    /// as recomputing them). A BSDF lives in one thread's Arena for one path sample
+    /// (materials/material.h), so the mutable cache is never shared between threads.
+    struct WoTerms {
+        vec3 wo{std::numeric_limits<float>::quiet_NaN()};  // key (NaN: never equal, first call fills)
+        // Filled by woTerms() before any read (left uninitialised: the BSDF is built per shading point).
+        vec3 woC;   // wo in the coat frame
+        float g1o;  // Smith G1 of woC without χ+: 1/(1 + Λ(woC))
+        float ps;   // specular sampling probability (roughCoatSpecularProbability)
+        float tO[kMaxWavelengths];     // T21 = T(η_c, α, cosθo) per channel (eq. 2.53)
+        float cosTo[kMaxWavelengths];  // cosine of wo refracted into the film per channel (eq. 3.20)
+    };
+
+    /// What depends on the pair (wo, wi): wi in the coat frame, the half vector and D(h). eval and
+    /// pdf of one pair follow each other (next-event estimation: eval then pdf; sample: pdf then
+    /// eval), so the second call reuses them (pure functions of the pair: the same values).
+    struct WiTerms {
+        vec3 wo{std::numeric_limits<float>::quiet_NaN()}, wi{std::numeric_limits<float>::quiet_NaN()};  // key
+        vec3 wiC;            // filled by wiTerms() before any read
+        RoughCoatHalf half;  // of (woC, wiC)
+    };
+
+    const WiTerms& wiTerms(const WoTerms& o, const vec3& wi) const {
+        WiTerms& t = wi_;
+        if (wi == t.wi && o.wo == t.wo) return t;
+        t.wo = o.wo;
+        t.wi = wi;
+        t.wiC = toCoat(wi);
+        t.half = roughCoatHalf(p_.dist, o.woC, t.wiC);
+        return t;
+    }
+
+    const WoTerms& woTerms(const vec3& wo) const {
+        WoTerms& o = wo_;
+        if (wo == o.wo) return o;
+        o.wo = wo;
+        o.woC = toCoat(wo);
+        if (o.woC.z <= 0) return o;  // callers return zero / no sample
+        const int n = p_.n;
+        o.g1o = 1.0f / (1.0f + p_.dist.Lambda(o.woC));  // MicrofacetDistribution::smithG1's factor
+        p_.coatT.transmittance(o.woC.z, n, o.tO);
+        float t = 0.0f;
+        for (int c = 0; c < n; ++c) t += o.tO[c];
+        o.ps = roughCoatSpecularProbability(p_.wsAvg, p_.wdAvg, t / float(n));
+        for (int c = 0; c < n; ++c) o.cosTo[c] = filmCosine(p_.ch[c].invEta2, o.woC.z);
+        return o;
     }
 
     /// Cosine of a direction (cosine cosC about n0) refracted specularly into the film of relative
@@ -184,6 +196,8 @@ private:
     static float filmCosine(float invEta2, float cosC) { return safeSqrt(1.0f - invEta2 * (1.0f - cosC * cosC)); }
 
     Params p_;
+    mutable WoTerms wo_;
+    mutable WiTerms wi_;
 };
 
 class ProposedMaterial final : public Material {
