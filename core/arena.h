@@ -25,6 +25,15 @@ public:
         return new (mem) T(std::forward<Args>(args)...);
     }
 
+    /// An array of n default-initialised T, aligned for T (typed storage: no casts at the caller).
+    template <typename T>
+    T* makeArray(size_t n) {
+        static_assert(std::is_trivially_destructible_v<T>, "arena objects are never destroyed");
+        T* p = static_cast<T*>(allocate(sizeof(T) * n, alignof(T)));
+        for (size_t i = 0; i < n; ++i) new (p + i) T;
+        return p;
+    }
+
     void* allocate(size_t size, size_t align) {
         size_t offset = (used_ + align - 1) & ~(align - 1);
         if (current_ >= blocks_.size() || offset + size > blockSizes_[current_]) {

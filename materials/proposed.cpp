@@ -275,16 +275,10 @@ public:
             ws = ws_->eval(sp.tex, wl);
             wd = wd_->eval(sp.tex, wl);
         }
-        using Channel = ProposedBSDF::Channel;
-        // One arena block for the per-channel arrays: channels, then (spectral, constant α) the η
+        // Per-channel arrays in the arena (typed): the channels, and (spectral, constant α) the η
         // stencils and their prepared rows.
-        static_assert(alignof(RoughEtaRows) >= alignof(Channel) && alignof(RoughEtaRows) >= alignof(RoughStencil));
-        const size_t chBytes = (sizeof(Channel) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
-        const size_t seBytes = (sizeof(RoughStencil) * size_t(n) + alignof(RoughEtaRows) - 1) & ~(alignof(RoughEtaRows) - 1);
         const bool spectralStencils = atAlpha_ && !(wl.isRGB() && n == 3);
-        auto* block = static_cast<std::byte*>(arena.allocate(
-            chBytes + (spectralStencils ? seBytes + sizeof(RoughEtaRows) * size_t(n) : 0), alignof(RoughEtaRows)));
-        auto* ch = reinterpret_cast<Channel*>(block);
+        ProposedBSDF::Channel* ch = arena.makeArray<ProposedBSDF::Channel>(size_t(n));
         float eta[kMaxWavelengths], wdC[kMaxWavelengths];
         float wsSum = 0.0f, wdSum = 0.0f;  // in channel order, as SampledSpectrum::average
         const SampledWavelengths& cw = channels_.of(wl);  // the wavelengths the channels stand for
@@ -313,8 +307,8 @@ public:
                     ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);  // wd/(1 − Rd)
                 }
             } else {  // spectral: η(λ) varies per path; one η stencil per channel on the α-collapsed tables
-                auto* se = reinterpret_cast<RoughStencil*>(block + chBytes);
-                auto* rows = reinterpret_cast<RoughEtaRows*>(block + chBytes + seBytes);
+                RoughStencil* se = arena.makeArray<RoughStencil>(size_t(n));
+                RoughEtaRows* rows = arena.makeArray<RoughEtaRows>(size_t(n));
                 float td[kMaxWavelengths];
                 atAlpha_->etaStencils(eta, n, se, td, rows);  // = etaStencil(η_c), diffuse(·) per channel
                 for (int c = 0; c < n; ++c) {
@@ -327,9 +321,9 @@ public:
             }
         } else {  // textured α: the (η, α) stencils of the full tables
             using Line = RoughTransmittanceTables::Line;
-            auto* lines = static_cast<Line*>(arena.allocate(sizeof(Line) * size_t(n), alignof(Line)));
+            Line* lines = arena.makeArray<Line>(size_t(n));
             for (int c = 0; c < n; ++c) {
-                new (&lines[c]) Line(tables_->line(eta[c], alpha));
+                lines[c] = tables_->line(eta[c], alpha);
                 ch[c].fdr = 1.0f - tables_->internalDiffuseTransmittance(eta[c], alpha);  // eq. 3.19
                 ch[c].wdEff = roughCoatAlbedo(wdC[c], ch[c].fdr, false);                  // wd/(1 − Rd)
             }

@@ -15,9 +15,6 @@
 #include <mutex>
 
 #include <unistd.h>
-#if defined(__SSE__)
-#include <xmmintrin.h>
-#endif
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
@@ -193,42 +190,30 @@ RoughStencil RoughTablesAtAlpha::etaStencil(float eta) const { return roughCatmu
 
 void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, float* td, RoughEtaRows* rows) const {
     // Lane-wise the scalar etaCoord, roughCatmullRom (eqs. 2.45–2.49, interior branch) and
-    // diffuse (eq. 2.51); GCC/Clang vector extension (element-wise IEEE operations) and SSE sqrt
-    // (correctly rounded, as std::sqrt).
-    typedef float V4 __attribute__((vector_size(16)));
-    typedef int I4 __attribute__((vector_size(16)));
+    // diffuse (eq. 2.51), in lanes of spectral/lanes.h (element-wise IEEE operations; the square
+    // root correctly rounded, as std::sqrt).
+    using lanes::Float4;
+    using lanes::Int4;
     using T = RoughTransmittanceTables;
-    const V4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+    const Float4 zero = lanes::broadcast(0.0f), one = lanes::broadcast(1.0f);
     const float last = float(nEta_ - 1);
-    const V4 lastV = {last, last, last, last};
+    const Float4 lastV = lanes::broadcast(last);
     int c = 0;
     for (; c + 4 <= n; c += 4) {
-        V4 e;
-        std::memcpy(&e, eta + c, sizeof(e));
-        V4 u = (e - T::kEtaMin) / (T::kEtaMax - T::kEtaMin);
-        u = u < zero ? zero : (one < u ? one : u);  // std::clamp(u, 0, 1)
-#if defined(__SSE__)
-        V4 x = V4(_mm_sqrt_ps(__m128(u))) * last;  // etaCoord
-#else
-        V4 x;
-        for (int k = 0; k < 4; ++k) x[k] = std::sqrt(u[k]);
-        x = x * last;  // etaCoord
-#endif
-        x = x < zero ? zero : (lastV < x ? lastV : x);  // roughCatmullRom: std::clamp(x, 0, n − 1)
-        I4 i = __builtin_convertvector(x, I4);
-        const I4 iMax = {nEta_ - 2, nEta_ - 2, nEta_ - 2, nEta_ - 2};
-        i = iMax < i ? iMax : i;  // std::min(int(x), n − 2)
-        const V4 t = x - __builtin_convertvector(i, V4), t2 = t * t, t3 = t2 * t;
-        const V4 w[4] = {-0.5f * t + t2 - 0.5f * t3,        // eq. 2.46
-                         1.0f - 2.5f * t2 + 1.5f * t3,      // eq. 2.47
-                         0.5f * t + 2.0f * t2 - 1.5f * t3,  // eq. 2.48
-                         -0.5f * t2 + 0.5f * t3};           // eq. 2.49
+        const Float4 u = lanes::clamp((lanes::load(eta + c) - T::kEtaMin) / (T::kEtaMax - T::kEtaMin), zero, one);
+        const Float4 x = lanes::clamp(lanes::sqrt(u) * last, zero, lastV);  // etaCoord, then roughCatmullRom's clamp
+        const Int4 i = lanes::min(lanes::toInt(x), lanes::broadcast(nEta_ - 2));  // std::min(int(x), n − 2)
+        const Float4 t = x - lanes::toFloat(i), t2 = t * t, t3 = t2 * t;
+        const Float4 w[4] = {-0.5f * t + t2 - 0.5f * t3,        // eq. 2.46
+                             1.0f - 2.5f * t2 + 1.5f * t3,      // eq. 2.47
+                             0.5f * t + 2.0f * t2 - 1.5f * t3,  // eq. 2.48
+                             -0.5f * t2 + 0.5f * t3};           // eq. 2.49
         // Lanes to plain arrays for the per-lane gathers and stores (element access to vector
         // registers compiles to long shuffle sequences).
         int iv[4];
         float wv[4][4];  // wv[m][k]: weight of node i − 1 + m, lane k
-        std::memcpy(iv, &i, sizeof(iv));
-        for (int m = 0; m < 4; ++m) std::memcpy(wv[m], &w[m], sizeof(wv[m]));
+        lanes::store(iv, i);
+        for (int m = 0; m < 4; ++m) lanes::store(wv[m], w[m]);
         bool interior[4];
         float tdn[4][4] = {};  // tdn[m][k]: Td of node i − 1 + m, lane k
         for (int k = 0; k < 4; ++k) {
@@ -236,14 +221,10 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
             if (interior[k])
                 for (int m = 0; m < 4; ++m) tdn[m][k] = diffuse_[size_t(iv[k] - 1 + m)];
         }
-        V4 d = zero;
-        for (int m = 0; m < 4; ++m) {  // diffuse: Σ w_m Td[i − 1 + m] in order
-            V4 tm;
-            std::memcpy(&tm, tdn[m], sizeof(tm));
-            d = d + w[m] * tm;
-        }
+        Float4 d = zero;
+        for (int m = 0; m < 4; ++m) d = d + w[m] * lanes::load(tdn[m]);  // diffuse: Σ w_m Td[i − 1 + m] in order
         float dv[4];
-        std::memcpy(dv, &d, sizeof(dv));
+        lanes::store(dv, d);
         for (int k = 0; k < 4; ++k) {
             RoughStencil& s = se[c + k];
             if (!interior[k]) {  // ghost nodes (or NaN): the scalar code
@@ -264,7 +245,7 @@ void RoughTablesAtAlpha::etaStencils(const float* eta, int n, RoughStencil* se, 
                 r.row = &ext_[size_t(iv[k] - 1) * size_t(nMu_)];
                 for (int m = 0; m < 4; ++m) {
                     const float wm = wv[m][k];
-                    r.w[m] = RoughV4{wm, wm, wm, wm};
+                    r.w[m] = lanes::broadcast(wm);
                 }
             }
         }

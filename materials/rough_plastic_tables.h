@@ -18,12 +18,12 @@
 #pragma once
 
 #include <algorithm>
-#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "materials/microfacet.h"
+#include "spectral/lanes.h"
 
 namespace iris {
 
@@ -67,14 +67,11 @@ public:
     static float muNode(int i, int n) { return float(i) / float(n - 1); }
 };
 
-/// Four float lanes (GCC/Clang vector extension: element-wise IEEE operations, SSE on x86-64).
-typedef float RoughV4 __attribute__((vector_size(16)));
-
 /// An interior η stencil (four consecutive η nodes) of a RoughTablesAtAlpha prepared for
 /// RoughTablesAtAlpha::transmittances: the first of its four table rows and its four weights, each
 /// broadcast to four lanes. row == nullptr: not interior (use the RoughStencil).
 struct RoughEtaRows {
-    RoughV4 w[4];
+    lanes::Float4 w[4];
     const float* row = nullptr;
 };
 
@@ -182,16 +179,11 @@ public:
             const float* r1 = &ext_[size_t(se.idx[1]) * size_t(nMu_) + m0];
             const float* r2 = &ext_[size_t(se.idx[2]) * size_t(nMu_) + m0];
             const float* r3 = &ext_[size_t(se.idx[3]) * size_t(nMu_) + m0];
-            // Lane k = node m0 + k (element-wise IEEE operations, the same roundings as the
-            // scalar lineNode).
+            // Lane k = node m0 + k (spectral/lanes.h: element-wise IEEE operations, the same
+            // roundings as the scalar lineNode).
             const float* rows[4] = {r0, r1, r2, r3};
-            RoughV4 node = {0.0f, 0.0f, 0.0f, 0.0f};
-            for (int i = 0; i < 4; ++i) {
-                RoughV4 r;
-                std::memcpy(&r, rows[i], sizeof(r));
-                const RoughV4 w = {se.w[i], se.w[i], se.w[i], se.w[i]};
-                node = node + w * r;
-            }
+            lanes::Float4 node = lanes::broadcast(0.0f);
+            for (int i = 0; i < 4; ++i) node = node + lanes::broadcast(se.w[i]) * lanes::load(rows[i]);
             for (int k = 0; k < 4; ++k) v += mu.w[k] * node[k];
         } else {
             for (int k = 0; k < mu.count; ++k) v += mu.w[k] * lineNode(se, mu.idx[k]);
@@ -216,33 +208,28 @@ public:
             const int b = std::min(mu.idx[0], nMu_ - 4);  // first loaded node
             const int o = mu.idx[0] - b;                   // lane of the first stencil node
             const size_t stride = size_t(nMu_);
-            const RoughV4 zero = {0.0f, 0.0f, 0.0f, 0.0f}, one = {1.0f, 1.0f, 1.0f, 1.0f};
+            using lanes::Float4;
+            const Float4 zero = lanes::broadcast(0.0f), one = lanes::broadcast(1.0f);
             for (; c + 4 <= n; c += 4) {
                 if (!rows[c].row || !rows[c + 1].row || !rows[c + 2].row || !rows[c + 3].row) {
                     for (int k = 0; k < 4; ++k) out[c + k] = channelTransmittance(se, rows, c + k, mu);
                     continue;
                 }
-                RoughV4 node[4];  // node[k][l]: channel c + k, μ node b + l (lineNode)
+                Float4 node[4];  // node[k][l]: channel c + k, μ node b + l (lineNode)
                 for (int k = 0; k < 4; ++k) {
                     const RoughEtaRows& r = rows[c + k];
                     const float* p = r.row + b;
-                    RoughV4 acc = zero;
-                    for (int i = 0; i < 4; ++i) {
-                        RoughV4 v;
-                        std::memcpy(&v, p + size_t(i) * stride, sizeof(v));
-                        acc = acc + r.w[i] * v;
-                    }
+                    Float4 acc = zero;
+                    for (int i = 0; i < 4; ++i) acc = acc + r.w[i] * lanes::load(p + size_t(i) * stride);
                     node[k] = acc;
                 }
-                RoughV4 v = zero;  // lane k = channel c + k
+                Float4 v = zero;  // lane k = channel c + k
                 for (int j = 0; j < mu.count; ++j) {
                     const int l = o + j;
-                    const RoughV4 nj = {node[0][l], node[1][l], node[2][l], node[3][l]};
-                    const RoughV4 w = {mu.w[j], mu.w[j], mu.w[j], mu.w[j]};
-                    v = v + w * nj;
+                    const Float4 nj = {node[0][l], node[1][l], node[2][l], node[3][l]};
+                    v = v + lanes::broadcast(mu.w[j]) * nj;
                 }
-                v = v < zero ? zero : (one < v ? one : v);  // std::clamp(v, 0, 1) per lane
-                std::memcpy(out + c, &v, sizeof(v));
+                lanes::store(out + c, lanes::clamp(v, zero, one));  // std::clamp(v, 0, 1) per lane
             }
         }
         for (; c < n; ++c) out[c] = channelTransmittance(se, rows, c, mu);

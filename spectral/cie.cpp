@@ -58,12 +58,11 @@ IRIS_LANES_INLINE void blend(const float* table, int m, const TablePositions& p,
     }
 }
 
-// x̄, ȳ, z̄ of one 1 nm node as one 4-float vector (GCC/Clang vector extension: element-wise IEEE
-// operations, lowered to SSE2 here and to scalar code where there is no SIMD), so that a lane's
-// two nodes are two aligned loads and its three blends one vector blend (weightedXyzBarSum). A
-// plain loop over the components is vectorised by GCC across wavelengths instead, with emulated
-// gathers, which costs more than the scalar code.
-typedef float Float4 __attribute__((vector_size(16)));
+// x̄, ȳ, z̄ of one 1 nm node as one lane vector (spectral/lanes.h), so that a lane's two nodes are
+// two aligned loads and its three blends one vector blend (weightedXyzBarSum). A plain loop over
+// the components is vectorised by GCC across wavelengths instead, with emulated gathers, which
+// costs more than the scalar code.
+using lanes::Float4;
 struct CmfRows {
     Float4 row[kCmfCount];  // x̄, ȳ, z̄, 0
     CmfRows() {
@@ -106,16 +105,10 @@ IRIS_LANES_INLINE void d65LanesBody(const float* lambda, int count, float* out) 
         blend(kD65, m, p, out + j0);
     }
 }
-IRIS_LANES_AVX2 void d65LanesAvx2(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
-void d65LanesBaseline(const float* lambda, int count, float* out) { d65LanesBody(lambda, count, out); }
+IRIS_LANES_KERNEL(void, d65LanesKernel, d65LanesBody, (const float* lambda, int count, float* out), (lambda, count, out))
 }  // namespace
 
-void d65Lanes(const float* lambda, int count, float* out) {
-    if (lanes::useAvx2For(count))
-        d65LanesAvx2(lambda, count, out);
-    else
-        d65LanesBaseline(lambda, count, out);
-}
+void d65Lanes(const float* lambda, int count, float* out) { d65LanesKernel(lanes::useAvx2For(count), lambda, count, out); }
 
 namespace {
 IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* weight, int n) {
@@ -142,16 +135,12 @@ IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* w
     }
     return vec3(sum[0], sum[1], sum[2]);
 }
-IRIS_LANES_AVX2 vec3 weightedXyzBarSumAvx2(const float* lambda, const float* weight, int n) {
-    return weightedXyzBarSumBody(lambda, weight, n);
-}
-vec3 weightedXyzBarSumBaseline(const float* lambda, const float* weight, int n) {
-    return weightedXyzBarSumBody(lambda, weight, n);
-}
+IRIS_LANES_KERNEL(vec3, weightedXyzBarSumKernel, weightedXyzBarSumBody, (const float* lambda, const float* weight, int n),
+                  (lambda, weight, n))
 }  // namespace
 
 vec3 weightedXyzBarSum(const float* lambda, const float* weight, int n) {
-    return lanes::useAvx2For(n) ? weightedXyzBarSumAvx2(lambda, weight, n) : weightedXyzBarSumBaseline(lambda, weight, n);
+    return weightedXyzBarSumKernel(lanes::useAvx2For(n), lambda, weight, n);
 }
 
 double yIntegral() {

@@ -1,8 +1,10 @@
 // The exact single-film Airy kernel (spectral/film_airy.h) over all wavelengths of a path at once:
-// structure-of-arrays inputs, four wavelengths per SIMD group (an SSE2 and an AVX2 build,
-// spectral/lane_dispatch.h). FilmCoating (materials/film_coating.cpp)
+// structure-of-arrays inputs, four wavelengths per lane group (lanes::Double4, spectral/lanes.h; an
+// SSE2 and an AVX2 build, spectral/lane_dispatch.h). FilmCoating (materials/film_coating.cpp)
 // evaluates every reflectance / transmittance of a single exact film through it. Same formulation
-// and the same floating-point operations as airySingleFilmFastAt, lane by lane (docs/thin_film.md §8).
+// as airySingleFilmFastAt, lane by lane, except the complex square root of an absorbing medium
+// (Kahan's form instead of std::sqrt): the lanes agree with the scalar kernel to relative 1e-14,
+// and bit for bit for lossless media (docs/thin_film.md §8).
 #pragma once
 
 #include <cstdint>
@@ -32,7 +34,7 @@ struct AiryBatchOutput {
 /// Evaluate entries [0, n), n ≤ 32. Returns a bit mask of the entries where the closed form declined
 /// (den vanishes or underflows: q1 = 0 exactly; or a non-finite result): the caller evaluates those
 /// with the transfer matrix, exactly where airySingleFilmFastAt returns false. Their outputs are
-/// unspecified. Tested lane by lane against airySingleFilmFastAt in tests/materials/test_film_fast.cpp.
+/// unspecified. Tested lane by lane against airySingleFilmFastAt in tests/spectral/test_film_airy_batch.cpp.
 uint32_t airySingleFilmBatch(const AiryBatchInput& in, int n, const AiryBatchOutput& out);
 
 }  // namespace iris

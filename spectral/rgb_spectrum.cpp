@@ -69,14 +69,10 @@ IRIS_LANES_INLINE void sigmoidLanesBody(const SigmoidPolynomial& p, float scale,
     if (d65)
         for (int i = 0; i < padded; ++i) v[i] *= d65Scale * d65[i];
 }
-IRIS_LANES_AVX2 void sigmoidLanesAvx2(const SigmoidPolynomial& p, float scale, float d65Scale, const float* lambda,
-                                      const float* d65, int padded, float* v) {
-    sigmoidLanesBody(p, scale, d65Scale, lambda, d65, padded, v);
-}
-void sigmoidLanesBaseline(const SigmoidPolynomial& p, float scale, float d65Scale, const float* lambda,
-                          const float* d65, int padded, float* v) {
-    sigmoidLanesBody(p, scale, d65Scale, lambda, d65, padded, v);
-}
+IRIS_LANES_KERNEL(void, sigmoidLanes, sigmoidLanesBody,
+                  (const SigmoidPolynomial& p, float scale, float d65Scale, const float* lambda, const float* d65,
+                   int padded, float* v),
+                  (p, scale, d65Scale, lambda, d65, padded, v))
 }  // namespace
 
 SampledSpectrum RGBSpectrum::sample(const SampledWavelengths& wl) const {
@@ -99,10 +95,8 @@ SampledSpectrum RGBSpectrum::sample(const SampledWavelengths& wl) const {
         for (int i = 0; i < padded; ++i) v[i] = c;
         if (d65)
             for (int i = 0; i < padded; ++i) v[i] *= d65Scale * d65[i];
-    } else if (lanes::useAvx2For(padded)) {
-        sigmoidLanesAvx2(poly_, scale_, d65Scale, wl.lambdas(), d65, padded, s.lanes());
     } else {
-        sigmoidLanesBaseline(poly_, scale_, d65Scale, wl.lambdas(), d65, padded, s.lanes());
+        sigmoidLanes(lanes::useAvx2For(padded), poly_, scale_, d65Scale, wl.lambdas(), d65, padded, s.lanes());
     }
     return s;
 }

@@ -60,12 +60,8 @@ IRIS_LANES_INLINE void sampleVisibleLanesBody(float u, int n, float* lambda, flo
         pdf[i] = vs.pdf;
     }
 }
-IRIS_LANES_AVX2 void sampleVisibleLanesAvx2(float u, int n, float* lambda, float* pdf) {
-    sampleVisibleLanesBody(u, n, lambda, pdf);
-}
-void sampleVisibleLanesBaseline(float u, int n, float* lambda, float* pdf) {
-    sampleVisibleLanesBody(u, n, lambda, pdf);
-}
+IRIS_LANES_KERNEL(void, sampleVisibleLanes, sampleVisibleLanesBody, (float u, int n, float* lambda, float* pdf),
+                  (u, n, lambda, pdf))
 
 /// Padding lanes: a valid wavelength, pdf 0 (SampledWavelengths::lambdas()).
 void clearPadding(int n, float* lambda, float* pdf) {
@@ -82,10 +78,7 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u, int n) {
     if (n < 1 || n > kMaxWavelengths) fail("number of wavelengths must be in [1, ", kMaxWavelengths, "], got ", n);
     SampledWavelengths wl;
     wl.n_ = n;
-    if (lanes::useAvx2For(SampledSpectrum::paddedSize(n)))
-        sampleVisibleLanesAvx2(u, n, wl.lambda_, wl.pdf_);
-    else
-        sampleVisibleLanesBaseline(u, n, wl.lambda_, wl.pdf_);
+    sampleVisibleLanes(lanes::useAvx2For(SampledSpectrum::paddedSize(n)), u, n, wl.lambda_, wl.pdf_);
     clearPadding(n, wl.lambda_, wl.pdf_);
     const int padded = SampledSpectrum::paddedSize(n);
     cie::d65Lanes(wl.lambda_, padded, wl.d65_);

@@ -9,10 +9,7 @@ namespace {
 IRIS_LANES_INLINE void weightsBody(const float* l, const float* pdf, int padded, float* w) {
     for (int i = 0; i < padded; ++i) w[i] = pdf[i] != 0.0f ? l[i] / pdf[i] : 0.0f;
 }
-IRIS_LANES_AVX2 void weightsAvx2(const float* l, const float* pdf, int padded, float* w) {
-    weightsBody(l, pdf, padded, w);
-}
-void weightsBaseline(const float* l, const float* pdf, int padded, float* w) { weightsBody(l, pdf, padded, w); }
+IRIS_LANES_KERNEL(void, weights, weightsBody, (const float* l, const float* pdf, int padded, float* w), (l, pdf, padded, w))
 }  // namespace
 
 vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
@@ -28,10 +25,7 @@ vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& wl) {
     const float* pdf = wl.pdfs();
     const float* l = L.lanes();
     alignas(16) float w[kMaxWavelengths];
-    if (lanes::useAvx2For(padded))
-        weightsAvx2(l, pdf, padded, w);
-    else
-        weightsBaseline(l, pdf, padded, w);
+    weights(lanes::useAvx2For(padded), l, pdf, padded, w);
     const vec3 sum = cie::weightedXyzBarSum(wl.lambdas(), w, n);
     static const float invYIntegral = float(1.0 / cie::yIntegral());
     return sum * (invYIntegral / float(n));
