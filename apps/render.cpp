@@ -12,11 +12,13 @@
 
 #include "core/error.h"
 #include "render/film.h"
+#include "render/film_output.h"
 #include "core/io/image.h"
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "render/scene_hash.h"
 #include "spectral/color_management.h"
 
 #include <unistd.h>
@@ -44,6 +46,8 @@ Output
   --display NAME, --view NAME   display/view for the PNG (default: the config's defaults)
 Sampling
   --spp N                  samples per pixel (default: the scene's sampler sample_count)
+  --spp-range A:B          render only samples A..B-1 of every pixel (a shard of a split render);
+                           keep its film state with --checkpoint and add the shards with `merge`
   --time-limit SEC         stop after SEC seconds of wall time (with --spp 0: render until then)
   --seed N                 random seed (default 0); images are identical for any --threads
   --threads N              worker threads (default: all cores)
@@ -98,7 +102,7 @@ std::string replaceExtension(const std::string& path, const std::string& ext) {
 int main(int argc, char** argv) {
     std::string scenePath, output = "out.exr", outputSpace = kColorSpaceLinearRec709, ocioConfig, display, view;
     std::string checkpoint;
-    bool writePng = true, quiet = false, resume = false;
+    bool writePng = true, quiet = false, resume = false, sppRange = false;
     std::map<std::string, std::string> defines;
     RenderOptions opt;
 
@@ -124,6 +128,15 @@ int main(int argc, char** argv) {
         else if (a == "--spp") {
             opt.spp = parseInt(a, value());
             if (opt.spp < 0) usageError("--spp must be >= 0");
+        } else if (a == "--spp-range") {
+            const std::string v = value();
+            const size_t colon = v.find(':');
+            if (colon == std::string::npos) usageError("invalid value '" + v + "' for --spp-range (expected A:B)");
+            const int b = parseInt(a, v.substr(0, colon)), e = parseInt(a, v.substr(colon + 1));
+            if (b < 0 || e <= b) usageError("--spp-range A:B needs 0 <= A < B, got '" + v + "'");
+            opt.firstSample = b;
+            opt.spp = e - b;
+            sppRange = true;
         } else if (a == "--time-limit") {
             opt.timeLimit = parseDouble(a, value());
             if (opt.timeLimit <= 0) usageError("--time-limit must be > 0 seconds");
@@ -174,6 +187,7 @@ int main(int argc, char** argv) {
     }
     if (scenePath.empty()) scenePath = sourcePath("scenes/default.xml");
     if ((resume || opt.checkpointEvery > 0) && checkpoint.empty()) usageError("--resume and --checkpoint-every need --checkpoint FILE");
+    if (sppRange && checkpoint.empty()) usageError("--spp-range needs --checkpoint FILE (the film state that `merge` adds up)");
     opt.checkpointPath = checkpoint;
     opt.resume = resume;
     opt.progress = !quiet && isatty(STDERR_FILENO);
@@ -182,6 +196,7 @@ int main(int argc, char** argv) {
         const ColorManager colors(ocioConfig);
         if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
 
+        opt.sceneHash = sceneHash(scenePath, defines);
         SceneDescription desc = loadScene(scenePath, defines);
         const Scene scene(std::move(desc));
         const Renderer renderer(scene, opt);
@@ -195,11 +210,8 @@ int main(int argc, char** argv) {
         std::signal(SIGTERM, SIG_DFL);
 
         // Film values → output colour space, through OpenColorIO.
-        Image img(film.width(), film.height(), 3);
-        img.pixels = film.meanImage();
-        const std::string filmSpace = opt.rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ;
-        Image out = img;
-        colors.convert(out.pixels.data(), out.pixelCount(), filmSpace, outputSpace);
+        const Image out = filmOutputImage(film, opt.rgbMode, colors, outputSpace);
+        const std::string filmSpace = filmColorSpace(opt.rgbMode);
 
         const ImageMetadata meta = {
             {"iris.version", IRIS_VERSION},
@@ -212,6 +224,8 @@ int main(int argc, char** argv) {
             {"iris.spp_max", std::to_string(st.sppMax)},
             {"iris.spp_target", std::to_string(renderer.targetSpp())},
             {"iris.seed", std::to_string(opt.seed)},
+            {"iris.first_sample", std::to_string(opt.firstSample)},
+            {"iris.scene_hash", opt.sceneHash},
             {"iris.render_time_s", strCat(st.seconds)},
             {"iris.rays", std::to_string(st.rays)},
             {"iris.invalid_samples", std::to_string(st.invalidSamples)},
@@ -225,7 +239,8 @@ int main(int argc, char** argv) {
                              std::filesystem::path(output).extension() == ".jpg";
         if (!pngOnly) writeEXR(output, out, meta);
         if (pngOnly || writePng) {
-            Image ldr = img;
+            Image ldr(film.width(), film.height(), 3);
+            ldr.pixels = film.meanImage();
             colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmSpace, display, view);
             writeLDR(pngOnly ? output : replaceExtension(output, ".png"), ldr);
         }

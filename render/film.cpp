@@ -48,7 +48,7 @@ Film::Film(int width, int height) : width_(width), height_(height) {
     if (width <= 0 || height <= 0) fail("film size must be positive, got ", width, "x", height);
     const uint64_t n = uint64_t(width) * uint64_t(height);
     if (n > (uint64_t(1) << 28)) fail("film of ", width, "x", height, " pixels is too large (limit 2^28 pixels)");
-    sum_.assign(3 * n, 0.0);
+    sum_.assign(3 * n, 0);
     sumSq_.assign(3 * n, 0.0);
     count_.assign(n, 0);
 }
@@ -57,7 +57,21 @@ vec3 Film::pixel(int x, int y) const {
     const size_t i = size_t(y) * width_ + x;
     if (count_[i] == 0) return vec3(0.0f);
     const double inv = 1.0 / count_[i];
-    return vec3(float(sum_[3 * i] * inv), float(sum_[3 * i + 1] * inv), float(sum_[3 * i + 2] * inv));
+    auto mean = [&](int c) { return float(double(sum_[3 * i + c]) * 0x1p-48 * inv); };
+    return vec3(mean(0), mean(1), mean(2));
+}
+
+void Film::add(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_)
+        fail("cannot add a ", other.width_, "x", other.height_, " film to a ", width_, "x", height_, " film");
+    for (size_t i = 0; i < sum_.size(); ++i) {
+        sum_[i] += other.sum_[i];
+        sumSq_[i] += other.sumSq_[i];
+    }
+    for (size_t i = 0; i < count_.size(); ++i) {
+        if (count_[i] > UINT32_MAX - other.count_[i]) fail("film sample count overflows 2^32");
+        count_[i] += other.count_[i];
+    }
 }
 
 uint64_t Film::totalSamples() const {
@@ -91,7 +105,7 @@ std::vector<float> Film::varianceOfMeanImage() const {
         const double n = count_[i];
         if (n < 2) continue;
         for (int c = 0; c < 3; ++c) {
-            const double mean = sum_[3 * i + c] / n;
+            const double mean = double(sum_[3 * i + c]) * 0x1p-48 / n;
             const double var = std::max(0.0, (sumSq_[3 * i + c] - n * mean * mean) / (n - 1));
             img[3 * i + c] = float(var / n);
         }
@@ -100,7 +114,29 @@ std::vector<float> Film::varianceOfMeanImage() const {
 }
 
 namespace {
-constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '2'};
+// Version 3: the sums are 128-bit fixed-point integers (version 2 had doubles).
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '3'};
+
+std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+/// Reads magic and header; throws naming the file.
+std::string readHeader(std::istream& f, const std::string& path) {
+    char magic[8];
+    uint64_t hlen = 0;
+    f.read(magic, 8);
+    f.read(reinterpret_cast<char*>(&hlen), sizeof hlen);
+    if (!f || std::string(magic, 8) != std::string(kMagic, 8) || hlen > (1u << 20)) fail(path, ": not an iris checkpoint (film state)");
+    std::string h(hlen, '\0');
+    f.read(h.data(), std::streamsize(hlen));
+    if (!f) fail(path, ": checkpoint is truncated");
+    return h;
+}
+
+void readSize(std::istream& f, const std::string& path, int* w, int* h) {
+    f.read(reinterpret_cast<char*>(w), sizeof *w);
+    f.read(reinterpret_cast<char*>(h), sizeof *h);
+    if (!f) fail(path, ": checkpoint is truncated");
+}
 }
 
 void Film::save(const std::string& path, const std::string& header) const {
@@ -114,7 +150,7 @@ void Film::save(const std::string& path, const std::string& header) const {
         f.write(header.data(), std::streamsize(hlen));
         f.write(reinterpret_cast<const char*>(&width_), sizeof width_);
         f.write(reinterpret_cast<const char*>(&height_), sizeof height_);
-        f.write(reinterpret_cast<const char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+        f.write(reinterpret_cast<const char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(FixedSum)));
         f.write(reinterpret_cast<const char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
         f.write(reinterpret_cast<const char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
         if (!f) fail(path, ": error while writing checkpoint");
@@ -122,25 +158,33 @@ void Film::save(const std::string& path, const std::string& header) const {
     if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, ": cannot move checkpoint into place");
 }
 
-void Film::load(const std::string& path, const std::string& header) {
+void Film::load(const std::string& path, const std::string& key) {
     std::ifstream f(path, std::ios::binary);
     if (!f) fail(path, ": cannot open checkpoint");
-    char magic[8];
-    uint64_t hlen = 0;
-    f.read(magic, 8);
-    f.read(reinterpret_cast<char*>(&hlen), sizeof hlen);
-    if (!f || std::string(magic, 8) != std::string(kMagic, 8) || hlen > (1u << 20)) fail(path, ": not an iris checkpoint");
-    std::string h(hlen, '\0');
-    f.read(h.data(), std::streamsize(hlen));
-    if (h != header) fail(path, ": checkpoint was made with a different scene or settings");
+    if (firstLine(readHeader(f, path)) != key) fail(path, ": checkpoint was made with a different scene or settings");
     int w = 0, hgt = 0;
-    f.read(reinterpret_cast<char*>(&w), sizeof w);
-    f.read(reinterpret_cast<char*>(&hgt), sizeof hgt);
-    if (!f || w != width_ || hgt != height_) fail(path, ": checkpoint film size differs");
-    f.read(reinterpret_cast<char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(double)));
+    readSize(f, path, &w, &hgt);
+    if (w != width_ || hgt != height_) fail(path, ": checkpoint film size differs");
+    readBody(f, path);
+}
+
+Film Film::read(const std::string& path, std::string* header) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) fail(path, ": cannot open film state");
+    *header = readHeader(f, path);
+    int w = 0, h = 0;
+    readSize(f, path, &w, &h);
+    Film film(w, h);  // validates the size
+    film.readBody(f, path);
+    return film;
+}
+
+void Film::readBody(std::istream& f, const std::string& path) {
+    f.read(reinterpret_cast<char*>(sum_.data()), std::streamsize(sum_.size() * sizeof(FixedSum)));
     f.read(reinterpret_cast<char*>(sumSq_.data()), std::streamsize(sumSq_.size() * sizeof(double)));
     f.read(reinterpret_cast<char*>(count_.data()), std::streamsize(count_.size() * sizeof(uint32_t)));
     if (!f) fail(path, ": checkpoint is truncated");
+    if (f.peek() != std::char_traits<char>::eof()) fail(path, ": checkpoint has trailing data");
 }
 
 }  // namespace iris
