@@ -125,6 +125,8 @@ std::string readHeader(std::istream& f, const std::string& path) {
     uint64_t hlen = 0;
     f.read(magic, 8);
     f.read(reinterpret_cast<char*>(&hlen), sizeof hlen);
+    if (f && std::string(magic, 7) == std::string(kMagic, 7) && magic[7] != kMagic[7])
+        fail(path, ": checkpoint format version ", magic[7], "; this iris reads version ", kMagic[7], " (render it again)");
     if (!f || std::string(magic, 8) != std::string(kMagic, 8) || hlen > (1u << 20)) fail(path, ": not an iris checkpoint (film state)");
     std::string h(hlen, '\0');
     f.read(h.data(), std::streamsize(hlen));

@@ -6,7 +6,8 @@ their results are read back.
 - a task killed mid-render (scancel) is reported with its log, and --resubmit reruns only that task,
   which resumes from its film state; the merge then equals the unsplit render;
 - an experiment submitted with --slurm --submit (array + collect job) renders the same images as the
-  local runner, bit for bit, and writes its report.
+  local runner, bit for bit, and its report's results table equals the local one (but for paths
+  and measured times).
 Not part of the ctest suite (needs the daemons); the Slurm-free parts are in test_split_render.py.
 """
 from __future__ import annotations
@@ -22,7 +23,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
-from iris_experiments import exr, slurm  # noqa: E402
+from iris_experiments import collect, exr, slurm  # noqa: E402
 from iris_experiments.tools import REPO, build_dir  # noqa: E402
 
 BUILD = build_dir()
@@ -135,6 +136,11 @@ class SlurmClusterTest(unittest.TestCase):
         self.assertGreater(len(images), 0)
         for rel in images:
             self.assertTrue((pixels(local / rel) == pixels(cluster / rel)).all(), rel)
+        # The report's results equal the local run's, except paths and measured times.
+        def results(folder):
+            rows = collect.read_csv(folder / "results.csv")
+            return [{k: v for k, v in r.items() if k != "output" and "time" not in k} for r in rows]
+        self.assertEqual(results(local), results(cluster))
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
+#include <functional>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -140,4 +142,15 @@ TEST(FilmShard, SettingsFieldReadsKeyFields) {
     EXPECT_EQ(settingsField("scene=a.xml;mode=rgb;n=3", "scene"), "a.xml");
     EXPECT_EQ(settingsField("scene=a.xml;mode=rgb;n=3", "n"), "3");
     EXPECT_EQ(settingsField("scene=a.xml;mode=rgb", "seed"), "");
+}
+
+TEST(FilmShard, OlderCheckpointFormatIsNamed) {
+    const std::string path = tempState("v2");
+    {
+        std::ofstream f(path, std::ios::binary);
+        f << "IRISCKP2" << std::string(64, '\0');
+    }
+    const std::string msg = messageOf([&] { readFilmShard(path); });
+    EXPECT_NE(msg.find(path + ": checkpoint format version 2; this iris reads version 3"), std::string::npos) << msg;
+    std::remove(path.c_str());
 }
