@@ -237,7 +237,9 @@ def submit_slurm(exp: Experiment, args, out: Path, jobs) -> int:
     if args.slurm_partition:
         extra.append(f"--partition={args.slurm_partition}")
     array_id = slurm.sbatch(script, array=",".join(str(j.index) for j in pending))
-    collect_id = slurm.sbatch(None, dependency=f"afterok:{array_id}", wrap=f"cd {shlex.quote(str(tools.REPO))} && {collect_cmd}",
+    # The collect job starts in the folder sbatch was called from (Slurm's default), like the
+    # command line it repeats, so relative paths mean the same.
+    collect_id = slurm.sbatch(None, dependency=f"afterok:{array_id}", wrap=collect_cmd,
                               options=[f"--job-name=iris-{exp.name}-collect", f"--output={log_dir / 'collect-%j.out'}",
                                        "--cpus-per-task=1", *extra])
     record = out / "slurm_submissions.json"

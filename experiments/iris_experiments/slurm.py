@@ -124,10 +124,14 @@ def wait(job_ids, timeout: float, poll: float = 1.0) -> dict:
     """Wait (at most `timeout` s) until no job of `job_ids` is pending or running; returns the
     states of every job and array task. ExperimentError on timeout."""
     deadline = _time.monotonic() + timeout
+    last = {}
     while True:
         states = {}
         for jid in job_ids:
-            states.update(job_states(jid))
+            now = job_states(jid)
+            # A finished job that Slurm no longer lists (older than MinJobAge) keeps its last state.
+            states.update(now or {k: v for k, v in last.items() if k == jid or k.startswith(f"{jid}_")})
+        last = states
         if states and all(s.split()[0] in FINISHED for s in states.values()):
             return states
         if _time.monotonic() > deadline:
