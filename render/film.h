@@ -47,6 +47,7 @@ public:
     /// Sample values are clamped to ±2^47 before rounding, so 2^32 samples cannot overflow 2^127.
     static constexpr double kMaxSampleValue = 0x1p47;
     static FixedSum toFixed(float v) {
+        if (std::isnan(v)) return 0;  // the renderer drops invalid samples before; never UB here
         const double d = std::clamp(double(v), -kMaxSampleValue, kMaxSampleValue) * 0x1p48;  // exact
         return FixedSum(std::nearbyint(d));  // round to nearest (even): the only rounding of a sample
     }

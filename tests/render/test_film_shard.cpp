@@ -154,3 +154,12 @@ TEST(FilmShard, OlderCheckpointFormatIsNamed) {
     EXPECT_NE(msg.find(path + ": checkpoint format version 2; this iris reads version 3"), std::string::npos) << msg;
     std::remove(path.c_str());
 }
+
+TEST(FilmShard, FixedPointConversionIsBoundedAndExactOnItsGrid) {
+    EXPECT_EQ(Film::toFixed(1.0f), Film::FixedSum(1) << 48);
+    EXPECT_EQ(Film::toFixed(-0.5f), -(Film::FixedSum(1) << 47));
+    EXPECT_EQ(Film::toFixed(std::numeric_limits<float>::infinity()), Film::FixedSum(1) << 95);  // clamped to 2^47
+    EXPECT_EQ(Film::toFixed(std::numeric_limits<float>::quiet_NaN()), 0);
+    EXPECT_EQ(Film::toFixed(0x1p-50f), 0);  // below half the resolution 2^-48: rounds to 0
+    EXPECT_EQ(Film::toFixed(0x1p-48f), 1);
+}
