@@ -196,8 +196,8 @@ int main(int argc, char** argv) {
         const ColorManager colors(ocioConfig);
         if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
 
-        opt.sceneHash = sceneHash(scenePath, defines);
         SceneDescription desc = loadScene(scenePath, defines);
+        opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line
         const Scene scene(std::move(desc));
         const Renderer renderer(scene, opt);
         Film film(scene.description().camera.width, scene.description().camera.height);
