@@ -22,6 +22,7 @@
 #include "render/render_output.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "render/scene_hash.h"
 #include "spectral/color_management.h"
 
 #include <unistd.h>
@@ -76,6 +77,8 @@ Output
   --spectral-bin-width NM  bin width for --spectral-output over 360-830 nm (default 5)
 Sampling
   --spp N                  samples per pixel (default: the scene's sampler sample_count)
+  --spp-range A:B          render only samples A..B-1 of every pixel (a shard of a split render);
+                           keep its film state with --checkpoint and add the shards with `merge`
   --time-limit SEC         stop after SEC seconds of wall time (with --spp 0: render until then)
   --seed N                 random seed (default 0); images are identical for any --threads
   --threads N              worker threads (default: all cores)
@@ -134,7 +137,7 @@ int main(int argc, char** argv) {
     std::string scenePath, output = "out.exr", outputSpace = kColorSpaceLinearRec709, ocioConfig, display, view;
     std::string checkpoint, spectralOutput;
     double spectralBinWidth = 5.0;
-    bool writePng = true, quiet = false, resume = false;
+    bool writePng = true, quiet = false, resume = false, sppRange = false;
     std::map<std::string, std::string> defines;
     RenderOptions opt;
 
@@ -165,6 +168,15 @@ int main(int argc, char** argv) {
         else if (a == "--spp") {
             opt.spp = parseInt(a, value());
             if (opt.spp < 0) usageError("--spp must be >= 0");
+        } else if (a == "--spp-range") {
+            const std::string v = value();
+            const size_t colon = v.find(':');
+            if (colon == std::string::npos) usageError("invalid value '" + v + "' for --spp-range (expected A:B)");
+            const int b = parseInt(a, v.substr(0, colon)), e = parseInt(a, v.substr(colon + 1));
+            if (b < 0 || e <= b) usageError("--spp-range A:B needs 0 <= A < B, got '" + v + "'");
+            opt.firstSample = b;
+            opt.spp = e - b;
+            sppRange = true;
         } else if (a == "--time-limit") {
             opt.timeLimit = parseDouble(a, value());
             if (opt.timeLimit <= 0) usageError("--time-limit must be > 0 seconds");
@@ -223,6 +235,7 @@ int main(int argc, char** argv) {
     if ((resume || opt.checkpointEvery > 0) && checkpoint.empty()) usageError("--resume and --checkpoint-every need --checkpoint FILE");
     if (!spectralOutput.empty() && opt.rgbMode) usageError("--spectral-output needs --mode spectral (RGB-mode channels are not wavelength samples)");
     if (!spectralOutput.empty() && resume) usageError("--spectral-output cannot be combined with --resume (checkpoints hold the colour film only)");
+    if (sppRange && checkpoint.empty()) usageError("--spp-range needs --checkpoint FILE (the film state that `merge` adds up)");
     opt.checkpointPath = checkpoint;
     opt.resume = resume;
     opt.progress = !quiet && isatty(STDERR_FILENO);
@@ -232,6 +245,7 @@ int main(int argc, char** argv) {
         if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
 
         SceneDescription desc = loadScene(scenePath, defines);
+        opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line
         const Scene scene(std::move(desc));
         opt.onTileFinished = signalHookFromEnvironment();
         const Renderer renderer(scene, opt);
@@ -247,7 +261,7 @@ int main(int argc, char** argv) {
         std::signal(SIGTERM, SIG_DFL);
 
         // Film values → output colour space, through OpenColorIO (render/render_output.h).
-        const Image out = filmImage(film, opt, colors, outputSpace);
+        const Image out = filmImage(film, opt.rgbMode, colors, outputSpace);
         const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
         const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
                              std::filesystem::path(output).extension() == ".jpg";
@@ -261,7 +275,7 @@ int main(int argc, char** argv) {
         if (pngOnly || writePng) {
             Image ldr(film.width(), film.height(), 3);
             ldr.pixels = film.meanImage();
-            colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmColorSpace(opt), display, view);
+            colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmColorSpace(opt.rgbMode), display, view);
             writeLDR(pngOnly ? output : replaceExtension(output, ".png"), ldr);
         }
         std::fprintf(stderr, "%s: %u spp%s in %.2f s, %.3g rays/s, %llu invalid samples%s\n", output.c_str(), st.sppMin,

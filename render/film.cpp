@@ -53,7 +53,7 @@ Film::Film(int width, int height) : width_(width), height_(height) {
     if (width <= 0 || height <= 0) fail("film size must be positive, got ", width, "x", height);
     const uint64_t n = uint64_t(width) * uint64_t(height);
     if (n > (uint64_t(1) << 28)) fail("film of ", width, "x", height, " pixels is too large (limit 2^28 pixels)");
-    sum_.assign(3 * n, 0.0);
+    sum_.assign(3 * n, 0);
     sumSq_.assign(3 * n, 0.0);
     count_.assign(n, 0);
 }
@@ -62,7 +62,21 @@ vec3 Film::pixel(int x, int y) const {
     const size_t i = size_t(y) * width_ + x;
     if (count_[i] == 0) return vec3(0.0f);
     const double inv = 1.0 / count_[i];
-    return vec3(float(sum_[3 * i] * inv), float(sum_[3 * i + 1] * inv), float(sum_[3 * i + 2] * inv));
+    auto mean = [&](int c) { return float(double(sum_[3 * i + c]) * 0x1p-48 * inv); };
+    return vec3(mean(0), mean(1), mean(2));
+}
+
+void Film::add(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_)
+        fail("cannot add a ", other.width_, "x", other.height_, " film to a ", width_, "x", height_, " film");
+    for (size_t i = 0; i < sum_.size(); ++i) {
+        sum_[i] += other.sum_[i];
+        sumSq_[i] += other.sumSq_[i];
+    }
+    for (size_t i = 0; i < count_.size(); ++i) {
+        if (count_[i] > UINT32_MAX - other.count_[i]) fail("film sample count overflows 2^32");
+        count_[i] += other.count_[i];
+    }
 }
 
 uint64_t Film::totalSamples() const {
@@ -96,7 +110,7 @@ std::vector<float> Film::varianceOfMeanImage() const {
         const double n = count_[i];
         if (n < 2) continue;
         for (int c = 0; c < 3; ++c) {
-            const double mean = sum_[3 * i + c] / n;
+            const double mean = double(sum_[3 * i + c]) * 0x1p-48 / n;
             const double var = std::max(0.0, (sumSq_[3 * i + c] - n * mean * mean) / (n - 1));
             img[3 * i + c] = float(var / n);
         }
@@ -104,16 +118,19 @@ std::vector<float> Film::varianceOfMeanImage() const {
     return img;
 }
 
-// Checkpoint format 3 (host byte order; a checkpoint resumes on the machine that wrote it):
-//   "IRISCKP3", uint64 header length, header, int32 width, int32 height,
-//   double sum[3wh], double sumSq[3wh], uint32 count[wh], uint32 CRC-32 (zlib) of all bytes before it.
-// Written atomically (core/io/atomic_file.h); load checks size, checksum, header and film size
+// Checkpoint format 4 (host byte order; a checkpoint resumes on the machine that wrote it):
+//   "IRISCKP4", uint64 header length, header (text; first line = settings key), int32 width,
+//   int32 height, int128 sum[3wh] (fixed point, FixedSum), double sumSq[3wh], uint32 count[wh],
+//   uint32 CRC-32 (zlib) of all bytes before it.
+// Written atomically (core/io/atomic_file.h); reading checks size, checksum, header and film size
 // before touching the film, so a truncated, corrupted or foreign file is refused, never resumed.
+// (Version 3 was two different layouts on two branches: doubles with a CRC, or int128 without.)
 namespace {
 
-constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '3'};
+constexpr char kMagic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', '4'};
 constexpr char kMagicPrefix[7] = {'I', 'R', 'I', 'S', 'C', 'K', 'P'};
 constexpr uint64_t kMaxHeader = 1u << 20;
+constexpr size_t kFixedPrefix = 8 + 8;  // magic, header length
 
 template <typename T>
 void append(std::string& out, const T* p, size_t n) {
@@ -137,6 +154,8 @@ void take(const std::string& in, size_t& pos, T* p, size_t n) {
     pos += n * sizeof(T);
 }
 
+std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
+
 std::string readWholeFile(const std::string& path, uint64_t maxBytes) {
     std::ifstream f(path, std::ios::binary | std::ios::ate);
     if (!f) fail(path, ": cannot open checkpoint");
@@ -150,11 +169,37 @@ std::string readWholeFile(const std::string& path, uint64_t maxBytes) {
     return data;
 }
 
+/// Bytes of a checkpoint of a w×h film without its header.
+uint64_t payloadBytes(uint64_t pixels) {
+    return kFixedPrefix + 2 * sizeof(int32_t) + (3 * sizeof(Film::FixedSum) + 3 * sizeof(double) + sizeof(uint32_t)) * pixels + 4;
+}
+
+/// Checks magic and version of a whole file; returns its header; `pos` is set after it (at the
+/// film size, whose 8 bytes are there).
+std::string checkedHeader(const std::string& in, const std::string& path, size_t& pos) {
+    if (in.size() < kFixedPrefix || std::memcmp(in.data(), kMagicPrefix, 7) != 0) fail(path, ": not an iris checkpoint (film state)");
+    if (in[7] != kMagic[7])
+        fail(path, ": checkpoint format version ", in[7], "; this iris reads version ", kMagic[7], " (render it again without --resume)");
+    uint64_t hlen = 0;
+    std::memcpy(&hlen, in.data() + 8, 8);
+    if (hlen > kMaxHeader || in.size() < kFixedPrefix + hlen + 2 * sizeof(int32_t) + 4)
+        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes)");
+    pos = kFixedPrefix + hlen;
+    return in.substr(kFixedPrefix, hlen);
+}
+
+/// The CRC-32 of everything before the last 4 bytes must equal them.
+void checkChecksum(const std::string& in, const std::string& path) {
+    uint32_t stored = 0;
+    std::memcpy(&stored, in.data() + in.size() - 4, 4);
+    if (crcOf(in.data(), in.size() - 4) != stored) fail(path, ": checkpoint is corrupted (CRC-32 mismatch); render again without --resume");
+}
+
 }  // namespace
 
 void Film::save(const std::string& path, const std::string& header) const {
     std::string out;
-    out.reserve(8 + 8 + header.size() + 8 + (sum_.size() + sumSq_.size()) * sizeof(double) + count_.size() * 4 + 4);
+    out.reserve(payloadBytes(count_.size()) + header.size());
     const uint64_t hlen = header.size();
     append(out, kMagic, 8);
     append(out, &hlen, 1);
@@ -169,30 +214,40 @@ void Film::save(const std::string& path, const std::string& header) const {
     writeFileAtomically(path, out);
 }
 
-void Film::load(const std::string& path, const std::string& header) {
-    const size_t pixels = sum_.size() / 3;
-    const uint64_t payload = 8 + 8 + 2 * sizeof(int32_t) + (2 * 3 * sizeof(double) + sizeof(uint32_t)) * uint64_t(pixels) + 4;
-    const std::string in = readWholeFile(path, payload + kMaxHeader);
-    if (in.size() < 16 || std::memcmp(in.data(), kMagicPrefix, 7) != 0) fail(path, ": not an iris checkpoint");
-    if (in[7] != kMagic[7])
-        fail(path, ": checkpoint format version ", in[7], " is not read by this iris (version ", kMagic[7], "); render again without --resume");
-    uint64_t hlen = 0;
-    std::memcpy(&hlen, in.data() + 8, 8);
-    if (hlen > kMaxHeader || in.size() != payload + hlen)
+void Film::takeBody(const std::string& in, size_t pos, const std::string& path, size_t headerBytes) {
+    if (in.size() != payloadBytes(count_.size()) + headerBytes)
         fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
-             height_, " film with this header has ", payload + std::min(hlen, kMaxHeader), ")");
-    uint32_t stored = 0;
-    std::memcpy(&stored, in.data() + in.size() - 4, 4);
-    if (crcOf(in.data(), in.size() - 4) != stored) fail(path, ": checkpoint is corrupted (CRC-32 mismatch); render again without --resume");
-    if (in.compare(16, hlen, header) != 0) fail(path, ": checkpoint was made with a different scene or settings");
-    size_t pos = 16 + hlen;
-    int w = 0, h = 0;
-    take(in, pos, &w, 1);
-    take(in, pos, &h, 1);
-    if (w != width_ || h != height_) fail(path, ": checkpoint film size differs");
+             height_, " film with this header has ", payloadBytes(count_.size()) + headerBytes, ")");
+    checkChecksum(in, path);
     take(in, pos, sum_.data(), sum_.size());
     take(in, pos, sumSq_.data(), sumSq_.size());
     take(in, pos, count_.data(), count_.size());
+}
+
+void Film::load(const std::string& path, const std::string& key) {
+    const std::string in = readWholeFile(path, payloadBytes(count_.size()) + kMaxHeader);
+    size_t pos = 0;
+    const std::string header = checkedHeader(in, path, pos);
+    int32_t w = 0, h = 0;
+    take(in, pos, &w, 1);
+    take(in, pos, &h, 1);
+    if (w != width_ || h != height_) fail(path, ": checkpoint film size differs");
+    Film loaded(w, h);  // fill a copy: any error leaves this film as it was
+    loaded.takeBody(in, pos, path, header.size());  // size, then checksum
+    if (firstLine(header) != key) fail(path, ": checkpoint was made with a different scene or settings");
+    *this = std::move(loaded);
+}
+
+Film Film::read(const std::string& path, std::string* header) {
+    const std::string in = readWholeFile(path, payloadBytes(uint64_t(1) << 28) + kMaxHeader);
+    size_t pos = 0;
+    *header = checkedHeader(in, path, pos);
+    int32_t w = 0, h = 0;
+    take(in, pos, &w, 1);
+    take(in, pos, &h, 1);
+    Film film(w, h);  // validates the size
+    film.takeBody(in, pos, path, header->size());
+    return film;
 }
 
 }  // namespace iris

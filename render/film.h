@@ -1,11 +1,20 @@
 // The film: per-pixel sums of sample values (XYZ in spectral mode, linear Rec.709 RGB in RGB mode)
-// in double precision, with per-pixel sample counts. Pixel filtering is done by filter importance
-// sampling (each sample lands in one pixel with weight 1, offsets drawn from the filter), so the
-// pixel value is the plain mean of its samples: renders of the same scene with different seeds can
-// be merged exactly by weighting with their sample counts, and sums are independent of threads.
+// with per-pixel sample counts. Pixel filtering is done by filter importance sampling (each sample
+// lands in one pixel with weight 1, offsets drawn from the filter), so the pixel value is the plain
+// mean of its samples: renders of the same scene with different seeds can be merged by weighting
+// with their sample counts, and sums are independent of threads.
+//
+// The sums are exact and order-independent: each sample value is rounded once to a fixed-point
+// number (48 fraction bits, a 128-bit integer) and the integers are added, which is associative.
+// So the films of disjoint sample ranges add up (Film::add) to bit for bit the film of the whole
+// range rendered in one go (docs/cluster.md). The sums of squares (variance estimate only) stay in
+// double precision.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -32,6 +41,17 @@ private:
 
 class Film {
 public:
+    /// Fixed-point sums: value · 2^kFractionBits rounded to the nearest integer.
+    using FixedSum = __int128;
+    static constexpr int kFractionBits = 48;
+    /// Sample values are clamped to ±2^47 before rounding, so 2^32 samples cannot overflow 2^127.
+    static constexpr double kMaxSampleValue = 0x1p47;
+    static FixedSum toFixed(float v) {
+        if (std::isnan(v)) return 0;  // the renderer drops invalid samples before; never UB here
+        const double d = std::clamp(double(v), -kMaxSampleValue, kMaxSampleValue) * 0x1p48;  // exact
+        return FixedSum(std::nearbyint(d));  // round to nearest (even): the only rounding of a sample
+    }
+
     Film(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }
@@ -39,7 +59,7 @@ public:
     void addSample(int x, int y, const vec3& value) {
         const size_t i = size_t(y) * width_ + x;
         for (int c = 0; c < 3; ++c) {
-            sum_[3 * i + c] += value[c];
+            sum_[3 * i + c] += toFixed(value[c]);
             sumSq_[3 * i + c] += double(value[c]) * value[c];
         }
         count_[i] += 1;
@@ -56,15 +76,25 @@ public:
     /// sample variance s² (0 where fewer than 2 samples).
     std::vector<float> varianceOfMeanImage() const;
 
+    /// Add another film's samples (same size): exact for the sums and counts, so adding the films
+    /// of disjoint sample ranges gives the film of their union whatever the order.
+    void add(const Film& other);
+
     /// Exact binary state (sums and counts) for checkpoints. Throws iris::Error naming the file.
+    /// `header` is text; its first line identifies the scene and settings (Renderer::settingsKey),
+    /// further lines describe the state (the sample range, Renderer::stateHeader).
     void save(const std::string& path, const std::string& header) const;
-    /// Load a checkpoint written by save(); `header` must match exactly (scene, settings). A
-    /// truncated, corrupted (CRC-32) or foreign file throws iris::Error and leaves the film as it was.
-    void load(const std::string& path, const std::string& header);
+    /// Load a checkpoint written by save(); the first line of its header must equal `key` exactly.
+    /// A truncated, corrupted (CRC-32) or foreign file throws iris::Error and leaves the film as it was.
+    void load(const std::string& path, const std::string& key);
+    /// Read a state file of any size; its whole header goes to *header.
+    static Film read(const std::string& path, std::string* header);
 
 private:
+    void takeBody(const std::string& in, size_t pos, const std::string& path, size_t headerBytes);
     int width_, height_;
-    std::vector<double> sum_, sumSq_;
+    std::vector<FixedSum> sum_;
+    std::vector<double> sumSq_;
     std::vector<uint32_t> count_;
 };
 

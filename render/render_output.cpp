@@ -5,12 +5,12 @@
 
 namespace iris {
 
-const char* filmColorSpace(const RenderOptions& opt) { return opt.rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ; }
+const char* filmColorSpace(bool rgbMode) { return rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ; }
 
-Image filmImage(const Film& film, const RenderOptions& opt, const ColorManager& colors, const std::string& outputSpace) {
+Image filmImage(const Film& film, bool rgbMode, const ColorManager& colors, const std::string& outputSpace) {
     Image out(film.width(), film.height(), 3);
     out.pixels = film.meanImage();
-    colors.convert(out.pixels.data(), out.pixelCount(), filmColorSpace(opt), outputSpace);
+    colors.convert(out.pixels.data(), out.pixelCount(), filmColorSpace(rgbMode), outputSpace);
     return out;
 }
 
@@ -30,6 +30,8 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, c
         {"iris.spp_max", std::to_string(st.sppMax)},
         {"iris.spp_target", std::to_string(renderer.targetSpp())},
         {"iris.seed", std::to_string(opt.seed)},
+        {"iris.first_sample", std::to_string(opt.firstSample)},
+        {"iris.scene_hash", opt.sceneHash},
         {"iris.render_time_s", strCat(st.seconds)},
         {"iris.rays", std::to_string(st.rays)},
         {"iris.invalid_samples", std::to_string(st.invalidSamples)},

@@ -14,10 +14,11 @@
 namespace iris {
 
 /// The colour space the film's values are in: CIE-XYZ (spectral mode) or lin_rec709 (RGB mode).
-const char* filmColorSpace(const RenderOptions& opt);
+const char* filmColorSpace(bool rgbMode);
 
-/// The film's mean image (3 channels) converted from filmColorSpace(opt) to `outputSpace`.
-Image filmImage(const Film& film, const RenderOptions& opt, const ColorManager& colors, const std::string& outputSpace);
+/// The film's mean image (3 channels) converted from filmColorSpace(rgbMode) to `outputSpace`
+/// (also what `merge` writes for added film states, so a merged split render equals the unsplit one).
+Image filmImage(const Film& film, bool rgbMode, const ColorManager& colors, const std::string& outputSpace);
 
 /// The EXR header of a render (the "iris.*" keys of docs/rendering.md).
 ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, const Renderer& renderer,

@@ -105,6 +105,9 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(sc
         if (!(opt_.rgbWavelengths[i] >= kLambdaMin && opt_.rgbWavelengths[i] <= kLambdaMax))
             fail("RGB channel wavelengths must be in [", kLambdaMin, ", ", kLambdaMax, "] nm");
     if (opt_.threads < 0) fail("--threads must be >= 0");
+    if (opt_.firstSample < 0) fail("the first sample index must be >= 0, got ", opt_.firstSample);
+    if (opt_.firstSample > 0 && spp_ == 0) fail("a sample range needs a fixed sample count, not --spp 0");
+    if (int64_t(opt_.firstSample) + spp_ > int64_t(INT32_MAX)) fail("sample range end exceeds 2^31 - 1");
 }
 
 std::string Renderer::settingsKey() const {
@@ -114,7 +117,13 @@ std::string Renderer::settingsKey() const {
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
                   ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", scene_.description().integrator.type,
-                  ";maxdepth=", scene_.description().integrator.maxDepth);
+                  ";maxdepth=", scene_.description().integrator.maxDepth, ";scene_hash=", opt_.sceneHash,
+                  ";first_sample=", opt_.firstSample);
+}
+
+std::string Renderer::stateHeader() const {
+    return strCat(settingsKey(), "\nsamples=", opt_.firstSample, ":",
+                  spp_ > 0 ? std::to_string(opt_.firstSample + spp_) : std::string());
 }
 
 RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral) const {
@@ -186,7 +195,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                 for (int y = y0; y < std::min(y0 + kTile, h); ++y)
                     for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
                         const uint64_t pixelIndex = uint64_t(y) * w + x;
-                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(s));
+                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(opt_.firstSample) + uint64_t(s));
                         SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
                                                 : opt_.independentWavelengths ? independentWavelengths(sampler, opt_)
                                                 : opt_.uniformWavelengths
@@ -226,13 +235,13 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (checkpoints) {
             lastComplete = film;
             if (opt_.checkpointEvery > 0 && secondsSince(lastCheckpoint) >= opt_.checkpointEvery) {
-                film.save(opt_.checkpointPath, settingsKey());
+                film.save(opt_.checkpointPath, stateHeader());
                 lastCheckpoint = Clock::now();
             }
         }
     }
     progress.finish();
-    if (checkpoints) lastComplete->save(opt_.checkpointPath, settingsKey());
+    if (checkpoints) lastComplete->save(opt_.checkpointPath, stateHeader());
 
     for (const ThreadState& ts : states) {
         rs.rays += ts.stats.rays;

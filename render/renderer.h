@@ -17,6 +17,8 @@ namespace iris {
 
 struct RenderOptions {
     int spp = -1;                  // samples per pixel (-1: the scene's)
+    int firstSample = 0;           // index of the first sample (a shard renders [firstSample, firstSample + spp))
+    std::string sceneHash;         // identifies the scene file's content and -D overrides (render/scene_hash.h)
     double timeLimit = 0;          // seconds (0 = none); with spp = 0 render until the time is up
     uint64_t seed = 0;
     int threads = 0;               // 0 = all cores
@@ -55,6 +57,9 @@ public:
     RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr, SpectralFilm* spectral = nullptr) const;
     /// String identifying everything that determines the image (checkpoint compatibility).
     std::string settingsKey() const;
+    /// settingsKey() and a second line "samples=A:B" (the sample range this render is meant to hold;
+    /// "A:" when the time limit decides): the header of checkpoints and film states.
+    std::string stateHeader() const;
     int targetSpp() const { return spp_; }
 
 private:

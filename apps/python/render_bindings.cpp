@@ -13,6 +13,7 @@
 #include "apps/python/bindings.h"
 #include "render/loader/scene_loader.h"
 #include "render/render_output.h"
+#include "render/scene_hash.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "core/source_tree.h"
@@ -25,15 +26,17 @@ namespace {
 struct PyScene {
     std::string path;  // the file, or "<string>"
     std::shared_ptr<const Scene> scene;
+    std::string hash;  // render/scene_hash.h for a file ("" for a string), as `render` records it
 };
 
-PyScene makeScene(const std::string& path, SceneDescription desc) {
+PyScene makeScene(const std::string& path, SceneDescription desc, std::string hash = {}) {
     py::gil_scoped_release release;  // building the Embree scene can take a while
-    return {path, std::make_shared<const Scene>(std::move(desc))};
+    return {path, std::make_shared<const Scene>(std::move(desc)), std::move(hash)};
 }
 
 PyScene loadFile(const std::string& path, const std::map<std::string, std::string>& defines) {
-    return makeScene(path, loadScene(path, defines));
+    SceneDescription desc = loadScene(path, defines);
+    return makeScene(path, std::move(desc), sceneHash(path, defines));
 }
 
 PyScene loadString(const std::string& xml, const std::string& baseDir, const std::map<std::string, std::string>& defines) {
@@ -103,6 +106,7 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
     std::atomic<double> fraction{0.0};
     opt.progressOut = &fraction;
     opt.progress = false;
+    opt.sceneHash = s.hash;
     const Renderer renderer(*s.scene, opt);
     const CameraDescription& cam = s.scene->description().camera;
     Film film(cam.width, cam.height);
@@ -139,7 +143,7 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
         out.stats = job.finish();
     }
     if (pythonError) throw std::move(*pythonError);
-    out.image = filmImage(film, opt, colors, outputSpace);
+    out.image = filmImage(film, opt.rgbMode, colors, outputSpace);
     out.variance = film.varianceOfMeanImage();
     out.counts.resize(size_t(film.width()) * film.height());
     for (int y = 0; y < film.height(); ++y)

@@ -1,7 +1,7 @@
 """The command-line driver shared by every experiment script (experiments/<name>.py):
 
     experiments/<name>.py [--quick] [--parallel N] [--threads T] [--build-dir DIR] [--out DIR]
-                          [--force] [--dry-run] [--slurm] [--collect-only]
+                          [--force] [--dry-run] [--slurm [--submit | --resubmit]] [--collect-only]
 
 An Experiment subclass declares its scenes (SceneSpec), its sweeps for full and quick mode, and an
 analysis that turns the collected rows into tables, figures and conclusions."""
@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import json
 import shlex
 import sys
 from dataclasses import dataclass, field
@@ -98,6 +99,12 @@ def parse_args(exp: Experiment, argv):
     p.add_argument("--slurm-cpus", type=int, default=8, help="#SBATCH --cpus-per-task")
     p.add_argument("--slurm-mem", default="4G", help="#SBATCH --mem")
     p.add_argument("--slurm-partition", default=None, help="#SBATCH --partition")
+    p.add_argument("--slurm-account", default=None, help="#SBATCH --account")
+    p.add_argument("--submit", action="store_true",
+                   help="with --slurm: submit the array with sbatch and a collect job that runs after it (afterok)")
+    p.add_argument("--resubmit", action="store_true",
+                   help="with --slurm: report the tasks whose image is missing or interrupted (with their logs) "
+                        "and submit only those, plus a new collect job")
     p.add_argument("--scene", action="append", default=[], metavar="[LABEL=]PATH",
                    help="render PATH instead of the defined scene LABEL (or of every scene); its materials are "
                         "then checked from the file only")
@@ -196,6 +203,57 @@ def plan(exp: Experiment, args):
     return out, bdir, sweep.expand(sweeps, out, render)
 
 
+def collect_command(exp: Experiment, args, out: Path) -> list:
+    """The --collect-only run that reports the renders of a Slurm array (same sweeps and options)."""
+    drop = {"--slurm", "--submit", "--resubmit", "--force"}
+    keep = [a for a in args.argv if a not in drop]
+    return [sys.executable, str(tools.REPO / "experiments" / f"{exp.name}.py"), *keep, "--collect-only",
+            *([] if args.out else ["--out", str(out)])]
+
+
+def submit_slurm(exp: Experiment, args, out: Path, jobs) -> int:
+    """Write the array script; with --submit/--resubmit submit it (all tasks, or only those without a
+    valid image) and a collect job that runs when every task succeeded (--dependency=afterok)."""
+    log_dir = out / "slurm-logs"
+    script = slurm.write_slurm_script(out / f"slurm_{exp.name}.sh", jobs, job_name=f"iris-{exp.name}", log_dir=log_dir,
+                                      time=args.slurm_time, cpus_per_task=args.slurm_cpus, mem=args.slurm_mem,
+                                      partition=args.slurm_partition, account=args.slurm_account)
+    collect_cmd = shlex.join(collect_command(exp, args, out))
+    if not (args.submit or args.resubmit):
+        print(f"wrote {script} ({len(jobs)} array tasks)\n"
+              f"submit:  jid=$(sbatch --parsable {script})\n"
+              f"collect: sbatch --dependency=afterok:$jid --wrap {shlex.quote(collect_cmd)}   (or run it after the array ends)\n"
+              f"or: add --submit (both at once); --resubmit later reruns only the tasks without a valid image")
+        return 0
+    pending = [j for j in jobs if args.force or not args.resubmit or not runner.output_ok(j)]
+    if args.resubmit:
+        for j in pending:
+            logs = sorted(log_dir.glob(f"slurm-*_{j.index}.out"), key=lambda p: p.stat().st_mtime)
+            tail = logs[-1].read_text(errors="replace").strip().splitlines()[-3:] if logs else []
+            why = "no image" if not j.output.exists() else "interrupted or unreadable image"
+            print(f"{exp.name}: task {j.index} ({j.output.name}): {why}; log {logs[-1] if logs else '(none)'}"
+                  + "".join(f"\n    {line}" for line in tail))
+        if not pending:
+            print(f"{exp.name}: every task has a valid image; nothing to resubmit (run --collect-only)")
+            return 0
+    extra = [f"--account={args.slurm_account}"] if args.slurm_account else []
+    if args.slurm_partition:
+        extra.append(f"--partition={args.slurm_partition}")
+    array_id = slurm.sbatch(script, array=",".join(str(j.index) for j in pending))
+    # The collect job starts in the folder sbatch was called from (Slurm's default), like the
+    # command line it repeats, so relative paths mean the same.
+    collect_id = slurm.sbatch(None, dependency=f"afterok:{array_id}", wrap=collect_cmd,
+                              options=[f"--job-name=iris-{exp.name}-collect", f"--output={log_dir / 'collect-%j.out'}",
+                                       "--cpus-per-task=1", *extra])
+    record = out / "slurm_submissions.json"
+    previous = json.loads(record.read_text()) if record.exists() else []
+    record.write_text(json.dumps(previous + [{"array": array_id, "collect": collect_id,
+                                              "tasks": [j.index for j in pending]}], indent=1))
+    print(f"{exp.name}: submitted array job {array_id} ({len(pending)} of {len(jobs)} tasks) and collect job "
+          f"{collect_id} (afterok:{array_id}); logs in {log_dir}")
+    return 0
+
+
 def _run(exp: Experiment, args) -> int:
     prov = report.provenance()   # before anything is written
     shard = parse_shard(args.shard)
@@ -208,15 +266,9 @@ def _run(exp: Experiment, args) -> int:
     if args.in_process and (args.slurm or shard):
         raise ExperimentError("--in-process renders here and now: it cannot be combined with --slurm or --shard")
     if args.slurm:
-        script = slurm.write_slurm_script(out / f"slurm_{exp.name}.sh", jobs, job_name=f"iris-{exp.name}",
-                                          time=args.slurm_time, cpus_per_task=args.slurm_cpus, mem=args.slurm_mem,
-                                          partition=args.slurm_partition)
-        again = " ".join(shlex.quote(a) for a in ["python3", f"experiments/{exp.name}.py", "--collect-only"] +
-                         (["--quick"] if args.quick else []) + (["--out", str(out)] if args.out else []))
-        print(f"wrote {script} ({len(jobs)} array tasks)\n"
-              f"submit:  jid=$(sbatch --parsable {script})\n"
-              f"collect: sbatch --dependency=afterok:$jid --wrap {shlex.quote(again)}   (or run it after the array ends)")
-        return 0
+        return submit_slurm(exp, args, out, jobs)
+    if args.submit or args.resubmit:
+        raise ExperimentError("--submit and --resubmit need --slurm")
 
     if shard and not args.collect_only:
         mine = [j for j in jobs if j.index % shard[1] == shard[0]]
@@ -226,7 +278,7 @@ def _run(exp: Experiment, args) -> int:
         if failed:
             raise ExperimentError(f"{len(failed)} of {len(mine)} renders of this shard failed (first: "
                                   f"{failed[0].job.output.with_suffix('.log')}: {failed[0].message})")
-        missing = sum(1 for j in jobs if not j.output.exists())
+        missing = sum(1 for j in jobs if not runner.output_ok(j))
         print(f"{exp.name}: shard done; {missing} renders of other shards missing" +
               ("" if missing else "; all renders exist: run again with --collect-only for the report"))
         return 0
@@ -240,7 +292,7 @@ def _run(exp: Experiment, args) -> int:
         if failed:
             lines = [f"{r.job.output.with_suffix('.log')}: {r.message}" for r in failed[:5]]
             raise ExperimentError(f"{len(failed)} of {len(jobs)} renders failed:\n  " + "\n  ".join(lines))
-    missing = [j for j in jobs if not j.output.exists()]
+    missing = [j for j in jobs if not runner.output_ok(j)]
     if missing:
         raise ExperimentError(f"{len(missing)} renders are missing (first: {missing[0].output}); "
                               "run without --collect-only or wait for the Slurm array")

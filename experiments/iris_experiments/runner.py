@@ -7,7 +7,22 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
+from . import exr
 from .tools import REPO
+
+
+def output_ok(job) -> bool:
+    """Whether a job's output counts as done: it exists, is a readable EXR (render writes EXRs
+    atomically, so a killed task leaves none or a whole one) and is not an interrupted render
+    (iris.interrupted = 1: render stopped by a signal writes the samples done so far)."""
+    if not job.output.exists():
+        return False
+    if job.output.suffix != ".exr":
+        return True
+    try:
+        return exr.read_exr_metadata(str(job.output)).get("iris.interrupted", "0") != "1"
+    except (exr.ExrError, OSError, ValueError):
+        return False
 
 
 @dataclass
@@ -24,7 +39,7 @@ class JobResult:
 
 
 def run_job(job, force: bool = False, timeout: float | None = None) -> JobResult:
-    if job.output.exists() and not force:
+    if output_ok(job) and not force:
         return JobResult(job, 0, 0.0, skipped=True)
     job.output.parent.mkdir(parents=True, exist_ok=True)
     log = job.output.with_suffix(".log")

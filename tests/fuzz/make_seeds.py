@@ -99,11 +99,12 @@ def image_seeds():
 
 
 def checkpoint_seeds():
-    # Film::save's format 3 (render/film.cpp) for a 4x3 film and the header "fuzz".
-    w, h, header = 4, 3, b'fuzz'
+    # Film::save's format 4 (render/film.cpp) for a 4x3 film and the header "fuzz\nsamples=0:2":
+    # int128 fixed-point sums (48 fraction bits), double sums of squares, counts, CRC-32.
+    w, h, header = 4, 3, b'fuzz\nsamples=0:2'
     n = w * h
-    body = b'IRISCKP3' + struct.pack('<Q', len(header)) + header + struct.pack('<ii', w, h)
-    body += struct.pack('<%dd' % (3 * n), *[0.5 * i for i in range(3 * n)])
+    body = b'IRISCKP4' + struct.pack('<Q', len(header)) + header + struct.pack('<ii', w, h)
+    body += b''.join(int(0.5 * i * 2 ** 48).to_bytes(16, 'little', signed=True) for i in range(3 * n))
     body += struct.pack('<%dd' % (3 * n), *[0.25 * i for i in range(3 * n)])
     body += struct.pack('<%dI' % n, *([2] * n))
     put('checkpoint', 'film4x3.ckpt', body + struct.pack('<I', zlib.crc32(body)))
