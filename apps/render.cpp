@@ -15,6 +15,7 @@
 #include "core/io/image.h"
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
+#include "render/integrator.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "spectral/color_management.h"
@@ -216,8 +217,8 @@ int main(int argc, char** argv) {
             {"iris.rays", std::to_string(st.rays)},
             {"iris.invalid_samples", std::to_string(st.invalidSamples)},
             {"iris.interrupted", st.interrupted ? "1" : "0"},
-            {"iris.integrator", scene.description().integrator.type},
-            {"iris.max_depth", std::to_string(scene.description().integrator.maxDepth)},
+            {"iris.integrator", scene.description().integrator->type()},
+            {"iris.max_depth", std::to_string(scene.description().integrator->maxDepth())},
             {"iris.colorspace", outputSpace},
             {"iris.ocio_config", colors.configPath()},
         };

@@ -7,43 +7,6 @@
 
 namespace iris {
 
-PixelFilter::PixelFilter(const CameraDescription& d) : type_(d.filter), radius_(d.filterRadius), stddev_(d.gaussianStddev) {
-    if (!(radius_ > 0)) fail("pixel filter radius must be positive, got ", radius_);
-    if (!(stddev_ > 0)) fail("gaussian filter stddev must be positive, got ", stddev_);
-    if (type_ != CameraDescription::Filter::Gaussian) return;
-    // Truncated Gaussian on [−3σ, 3σ]: CDF(x) = (erf(x/(σ√2)) + erf(a/(σ√2))) / (2 erf(a/(σ√2))).
-    // Invert at 1025 evenly spaced probabilities by Newton's method on erf (in double).
-    const int n = 1025;
-    const double a = 3.0 * stddev_, s = stddev_ * std::sqrt(2.0), ea = std::erf(a / s);
-    inverseCdf_.resize(n);
-    for (int i = 0; i < n; ++i) {
-        const double target = (2.0 * i / (n - 1) - 1.0) * ea;  // erf(x/s) = target
-        double x = 0.0;
-        for (int it = 0; it < 50; ++it) {
-            const double f = std::erf(x / s) - target;
-            const double df = 2.0 / std::sqrt(M_PI) * std::exp(-(x / s) * (x / s)) / s;
-            const double next = std::clamp(x - f / df, -a, a);
-            if (std::abs(next - x) < 1e-12) break;
-            x = next;
-        }
-        inverseCdf_[i] = float(x);
-    }
-    inverseCdf_.front() = float(-a);
-    inverseCdf_.back() = float(a);
-}
-
-float PixelFilter::sample1D(float u) const {
-    const float t = u * float(inverseCdf_.size() - 1);
-    const int i = std::min(int(t), int(inverseCdf_.size()) - 2);
-    const float f = t - float(i);
-    return (1.0f - f) * inverseCdf_[i] + f * inverseCdf_[i + 1];
-}
-
-vec2 PixelFilter::sample(const vec2& u) const {
-    if (type_ == CameraDescription::Filter::Box) return (2.0f * u - vec2(1.0f)) * radius_;
-    return vec2(sample1D(u.x), sample1D(u.y));
-}
-
 Film::Film(int width, int height) : width_(width), height_(height) {
     if (width <= 0 || height <= 0) fail("film size must be positive, got ", width, "x", height);
     const uint64_t n = uint64_t(width) * uint64_t(height);

@@ -1,7 +1,8 @@
 // The film: per-pixel sums of sample values (XYZ in spectral mode, linear Rec.709 RGB in RGB mode)
 // in double precision, with per-pixel sample counts. Pixel filtering is done by filter importance
-// sampling (each sample lands in one pixel with weight 1, offsets drawn from the filter), so the
-// pixel value is the plain mean of its samples: renders of the same scene with different seeds can
+// sampling (render/filters/rfilter.h: each sample lands in one pixel, offsets drawn from the
+// filter, weight 1 unless the filter has negative lobes), so the pixel value is the plain mean of
+// its samples: renders of the same scene with different seeds can
 // be merged exactly by weighting with their sample counts, and sums are independent of threads.
 #pragma once
 
@@ -10,25 +11,8 @@
 #include <vector>
 
 #include "core/math.h"
-#include "render/scene_description.h"
 
 namespace iris {
-
-/// Samples a film-plane offset (pixels) from the pixel filter: box of half-width r, or a Gaussian
-/// of standard deviation σ truncated at 3σ (Mitsuba's default gaussian: σ = 0.5 px). The Gaussian
-/// is sampled per axis through a tabulated inverse CDF (built once, 1025 entries, linear
-/// interpolation; the table is exact at its nodes to float precision).
-class PixelFilter {
-public:
-    explicit PixelFilter(const CameraDescription& d);
-    vec2 sample(const vec2& u) const;
-
-private:
-    float sample1D(float u) const;
-    CameraDescription::Filter type_;
-    float radius_, stddev_;
-    std::vector<float> inverseCdf_;
-};
 
 class Film {
 public:
