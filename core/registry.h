@@ -47,16 +47,23 @@ public:
         return obj;
     }
 
+    /// Advice for a known plugin of the scene format that iris cannot honour ("use ... instead"),
+    /// added to its "unknown type" message.
+    void addHint(const std::string& name, const std::string& advice) { hints_[name] = advice; }
+
     /// The one message for a type no plugin registered:
-    /// "file:line: unknown <tag> type 'x' (supported: a, b, ...)".
+    /// "file:line: unknown <tag> type 'x' (supported: a, b, ...)[: advice]".
     [[noreturn]] void failUnknownType(const Properties& props) const {
         std::string list;
         for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
-        failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")");
+        const auto hint = hints_.find(props.type());
+        failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")",
+               hint == hints_.end() ? std::string() : ": " + hint->second);
     }
 
 private:
     std::map<std::string, Factory> factories_;
+    std::map<std::string, std::string> hints_;
 };
 
 // Each object kind declares its registry beside its interface, in its own layer (for example
@@ -77,10 +84,19 @@ struct Registrar {
     }
 };
 
+/// Static registration of advice: `static HintRegistrar<MaterialRegistry> h("null", "use ...");`
+template <typename R>
+struct HintRegistrar {
+    HintRegistrar(const std::string& name, const std::string& advice) { R::instance().addHint(name, advice); }
+};
+
 #define IRIS_CONCAT_IMPL(a, b) a##b
 #define IRIS_CONCAT(a, b) IRIS_CONCAT_IMPL(a, b)
 /// IRIS_REGISTER(MaterialRegistry, "diffuse", factoryFunction);
 #define IRIS_REGISTER(REGISTRY, NAME, FACTORY) \
     static ::iris::Registrar<::iris::REGISTRY> IRIS_CONCAT(irisRegistrar_, __LINE__)(NAME, FACTORY)
+/// IRIS_HINT(MaterialRegistry, "null", "what to use instead");
+#define IRIS_HINT(REGISTRY, NAME, ADVICE) \
+    static ::iris::HintRegistrar<::iris::REGISTRY> IRIS_CONCAT(irisHint_, __LINE__)(NAME, ADVICE)
 
 }  // namespace iris

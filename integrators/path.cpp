@@ -144,6 +144,9 @@ PathParams readPathParams(const Properties& p) {
     pp.rrDepth = p.getInt("rr_depth", 5);
     if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
     pp.hideEmitters = p.getBool("hide_emitters", false);
+    // Mitsuba 0.6's strictNormals (default false) is accepted and has no effect: iris always
+    // discards a sampled direction whose geometric and shading sides disagree (strict for wi).
+    p.getBool("strict_normals", false);
     if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
     return pp;
 }

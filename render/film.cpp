@@ -48,6 +48,14 @@ std::vector<float> Film::meanImage() const {
     return img;
 }
 
+std::vector<float> Film::secondMomentImage() const {
+    std::vector<float> img(3 * size_t(width_) * height_, 0.0f);
+    for (size_t i = 0; i < count_.size(); ++i)
+        if (count_[i] > 0)
+            for (int c = 0; c < 3; ++c) img[3 * i + c] = float(sumSq_[3 * i + c] / count_[i]);
+    return img;
+}
+
 std::vector<float> Film::varianceOfMeanImage() const {
     std::vector<float> img(3 * size_t(width_) * height_, 0.0f);
     for (size_t i = 0; i < count_.size(); ++i) {

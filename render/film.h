@@ -36,6 +36,8 @@ public:
 
     /// Interleaved 3-channel mean image.
     std::vector<float> meanImage() const;
+    /// Interleaved 3-channel mean of the squared samples (the second moment; 0 where no samples).
+    std::vector<float> secondMomentImage() const;
     /// Interleaved 3-channel estimated variance of each pixel's mean: s²/n with the unbiased
     /// sample variance s² (0 where fewer than 2 samples).
     std::vector<float> varianceOfMeanImage() const;

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/math.h"
 #include "core/mesh.h"
 #include "materials/material.h"
+#include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
 #include "render/sensors/sensor.h"
 #include "spectral/spectrum.h"
@@ -37,6 +39,7 @@ struct CameraDescription {
     int width = 512, height = 512;
     ReconstructionFilterPtr filter;  // nullptr: Mitsuba's default, a gaussian of stddev 0.5 px
     SensorPtr sensor;                // created for width × height (render/sensors/)
+    std::optional<LdrSettings> ldr;  // an ldrfilm's tone mapping for the PNG (render/films/)
 };
 
 class Integrator;

@@ -3,7 +3,10 @@
 // through RFilterRegistry (render/filters/).
 #pragma once
 
+#include <optional>
+
 #include "core/registry.h"
+#include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
 
 namespace iris {
@@ -11,6 +14,7 @@ namespace iris {
 struct FilmDescription {
     int width = 768, height = 576;  // Mitsuba's defaults
     ReconstructionFilterPtr filter;  // nullptr: Mitsuba's default, a gaussian of stddev 0.5 px
+    std::optional<LdrSettings> ldr;  // ldrfilm: how the PNG is made (else OpenColorIO's display view)
 };
 
 using FilmRegistry = Registry<FilmDescription>;

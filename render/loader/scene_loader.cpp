@@ -40,6 +40,7 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
     cam.width = film.width;
     cam.height = film.height;
     cam.filter = film.filter;
+    cam.ldr = film.ldr;
     cam.sensor = SensorRegistry::instance().create(p, FilmSize{film.width, film.height});
     if (c.sampler) scene.spp = SamplerRegistry::instance().create(*c.sampler)->sampleCount;
 }
@@ -53,37 +54,58 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
     scene.lights.push_back(LightRegistry::instance().create(p));
 }
 
+void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {
+    const std::string& tag = p.tag();
+    if (tag == "shape") {
+        scene.shapes.push_back(loadShape(p));
+    } else if (tag == "bsdf") {
+        materialFor(p);  // created now so that its errors show even when unused
+    } else if (tag == "texture") {
+        // Built by the material that uses it (which knows the spectrum kind).
+    } else if (tag == "emitter") {
+        loadEmitter(p, scene);
+    } else if (tag == "sensor") {
+        if (haveSensor) failAt(p.location(), "only one <sensor> is supported");
+        haveSensor = true;
+        loadSensor(p, scene);
+    } else if (tag == "integrator") {
+        if (haveIntegrator) failAt(p.location(), "only one <integrator> is supported");
+        haveIntegrator = true;
+        scene.integrator = IntegratorRegistry::instance().create(p);
+    } else if (tag == "sampler" || tag == "film" || tag == "rfilter") {
+        failAt(p.location(), "<", tag, "> must be inside a <sensor>");
+    } else if (tag == "medium" || tag == "phase") {
+        failAt(p.location(), "<", tag, " type=\"", p.type(), "\">: iris has no participating media (surfaces in vacuum only); "
+               "remove the <", tag, "> and the shapes' interior/exterior references, and use integrator 'path'");
+    } else {
+        failAt(p.location(), "<", tag, "> is not supported yet");
+    }
+}
+
+/// Every top-level object is loaded even after one fails, so that a file with several problems
+/// reports all of them at once: one iris::Error whose lines are the "file:line: problem" messages.
 SceneDescription build(ParsedScene parsed) {
     SceneDescription scene;
     scene.sourceFile = parsed.sourceFile;
     bool haveSensor = false, haveIntegrator = false;
-    for (const PropertiesPtr& obj : parsed.objects) {
-        const Properties& p = *obj;
-        const std::string& tag = p.tag();
-        if (tag == "shape") {
-            scene.shapes.push_back(loadShape(p));
-        } else if (tag == "bsdf") {
-            materialFor(p);  // created now so that its errors show even when unused
-        } else if (tag == "texture") {
-            // Built by the material that uses it (which knows the spectrum kind).
-        } else if (tag == "emitter") {
-            loadEmitter(p, scene);
-        } else if (tag == "sensor") {
-            if (haveSensor) failAt(p.location(), "only one <sensor> is supported");
-            haveSensor = true;
-            loadSensor(p, scene);
-        } else if (tag == "integrator") {
-            if (haveIntegrator) failAt(p.location(), "only one <integrator> is supported");
-            haveIntegrator = true;
-            scene.integrator = IntegratorRegistry::instance().create(p);
-        } else if (tag == "sampler" || tag == "film" || tag == "rfilter") {
-            failAt(p.location(), "<", tag, "> must be inside a <sensor>");
-        } else {
-            failAt(p.location(), "<", tag, "> is not supported yet");
+    std::vector<std::string> problems;
+    auto attempt = [&](auto&& load) {
+        try {
+            load();
+        } catch (const Error& e) {
+            problems.emplace_back(e.what());
         }
-    }
-    if (!haveSensor) loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene);  // Mitsuba's default sensor
+    };
+    for (const PropertiesPtr& obj : parsed.objects)
+        attempt([&] { loadObject(*obj, scene, haveSensor, haveIntegrator); });
+    if (!haveSensor)  // Mitsuba's default sensor
+        attempt([&] { loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene); });
     if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", "path", {}));
+    if (!problems.empty()) {
+        std::string all;
+        for (const std::string& m : problems) all += (all.empty() ? "" : "\n") + m;
+        fail(all);
+    }
     return scene;
 }
 
