@@ -20,6 +20,7 @@
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
 #include "render/render_output.h"
+#include "render/integrator.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/scene_hash.h"
@@ -129,6 +130,22 @@ double parseDouble(const std::string& opt, const std::string& v) {
 
 std::string replaceExtension(const std::string& path, const std::string& ext) {
     return std::filesystem::path(path).replace_extension(ext).string();
+}
+
+/// The image plus Mitsuba's moment AOVs: moment1.{R,G,B} (the per-pixel mean) and moment2.{R,G,B}
+/// (the mean of the squared samples), both in the film's space (XYZ in spectral mode, linear
+/// Rec.709 in RGB mode): a second moment does not transform linearly between colour spaces.
+Image withMoments(const Image& img, const Film& film) {
+    const std::vector<float> m1 = film.meanImage(), m2 = film.secondMomentImage();
+    Image out(img.width, img.height, 9);
+    out.channelNames = {"R", "G", "B", "moment1.R", "moment1.G", "moment1.B", "moment2.R", "moment2.G", "moment2.B"};
+    for (size_t p = 0; p < img.pixelCount(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            out.pixels[9 * p + c] = img.pixels[3 * p + c];
+            out.pixels[9 * p + 3 + c] = m1[3 * p + c];
+            out.pixels[9 * p + 6 + c] = m2[3 * p + c];
+        }
+    return out;
 }
 
 }  // namespace
@@ -262,10 +279,11 @@ int main(int argc, char** argv) {
 
         // Film values → output colour space, through OpenColorIO (render/render_output.h).
         const Image out = filmImage(film, opt.rgbMode, colors, outputSpace);
+        const std::string filmSpace = filmColorSpace(opt.rgbMode);
         const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
         const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
                              std::filesystem::path(output).extension() == ".jpg";
-        if (!pngOnly) writeEXR(output, out, meta);
+        if (!pngOnly) writeEXR(output, scene.description().integrator->type() == "moment" ? withMoments(out, film) : out, meta);
         if (spectral) {
             ImageMetadata spectralMeta = spectralLayoutMetadata();
             spectralMeta.insert(spectralMeta.end(), meta.begin(), meta.end());
@@ -275,7 +293,12 @@ int main(int argc, char** argv) {
         if (pngOnly || writePng) {
             Image ldr(film.width(), film.height(), 3);
             ldr.pixels = film.meanImage();
-            colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmColorSpace(opt.rgbMode), display, view);
+            if (const auto& tonemap = scene.description().camera.ldr) {  // an ldrfilm: its own tone map
+                colors.convert(ldr.pixels.data(), ldr.pixelCount(), filmSpace, kColorSpaceLinearRec709);
+                applyLdrTonemap(*tonemap, ldr.pixels.data(), ldr.pixelCount());
+            } else {
+                colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmSpace, display, view);
+            }
             writeLDR(pngOnly ? output : replaceExtension(output, ".png"), ldr);
         }
         std::fprintf(stderr, "%s: %u spp%s in %.2f s, %.3g rays/s, %llu invalid samples%s\n", output.c_str(), st.sppMin,

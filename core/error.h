@@ -44,4 +44,15 @@ template <typename... Args>
     throw Error(loc, strCat(args...));
 }
 
+/// Run f(); an iris::Error it throws (a file error naming its file, a bad enum value) is rethrown
+/// with the scene location that asked for it in front: "scene.xml:12: <prefix><message>".
+template <typename F>
+decltype(auto) withLocation(const SourceLocation& loc, F&& f, const std::string& prefix = "") {
+    try {
+        return f();
+    } catch (const Error& e) {
+        failAt(loc, prefix, e.what());
+    }
+}
+
 }  // namespace iris

@@ -136,13 +136,15 @@ PropertiesPtr Properties::getObject(const std::string& name, bool required) cons
 }
 
 void Properties::checkUnqueried() const {
+    std::string known, all;
+    for (const auto& q : asked_) known += (known.empty() ? "" : ", ") + q;
     for (const auto& [name, entry] : values_) {
         if (queried_.count(name)) continue;
-        std::string known;
-        for (const auto& q : asked_) known += (known.empty() ? "" : ", ") + q;
-        failAt(entry.loc, "unknown parameter '", name, "' of ", tag_, " '", type_, "'",
-               known.empty() ? std::string() : " (known parameters: " + known + ")");
+        const Error e(entry.loc, strCat("unknown parameter '", name, "' of ", tag_, " '", type_, "'",
+                                        known.empty() ? std::string() : " (known parameters: " + known + ")"));
+        all += (all.empty() ? "" : "\n") + std::string(e.what());
     }
+    if (!all.empty()) throw Error(all);  // every unknown parameter, one "file:line: ..." line each
 }
 
 }  // namespace iris

@@ -88,8 +88,8 @@ public:
     /// A nested object given by name (or nullptr when absent and not required).
     PropertiesPtr getObject(const std::string& name, bool required = true) const;
 
-    /// Throw "file:line: unknown parameter 'x' of <tag> 'type' (known: ...)" for the first
-    /// parameter that no getter has read.
+    /// Throw one error with a line "file:line: unknown parameter 'x' of <tag> 'type' (known: ...)"
+    /// for every parameter that no getter has read.
     void checkUnqueried() const;
 
     /// Cache for the object built from these properties (shared by every <ref> to the same id).

@@ -1,9 +1,13 @@
-// Plugins registered by name (as in Mitsuba): every material, texture and emitter type registers
-// a factory under its scene-file name; the scene loader creates objects through these registries,
-// so adding a plugin never touches the loader. Registration happens in static initialisers, so
-// the library is linked as a whole archive (see CMakeLists.txt).
+// Plugins registered by name (as in Mitsuba): every object kind a scene file can name (shapes,
+// sensors, films, reconstruction filters, samplers, integrators, emitters, textures, BSDFs,
+// spectra) registers a factory under its scene-file name; the scene loader creates objects
+// through these registries, so adding a plugin touches only the plugin's own file. Registration
+// happens in static initialisers, so the library is linked as a whole archive (see CMakeLists.txt);
+// a name registered twice in one registry stops the program at start-up.
 #pragma once
 
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -23,7 +27,11 @@ public:
         static Registry r;
         return r;
     }
-    void add(const std::string& name, Factory f) { factories_[name] = std::move(f); }
+    /// Register a factory; a name already present is an error (two plugins cannot share a name).
+    void add(const std::string& name, Factory f) {
+        if (!factories_.emplace(name, std::move(f)).second)
+            fail("plugin name '", name, "' is registered twice in one registry");
+    }
     bool has(const std::string& name) const { return factories_.count(name) > 0; }
     std::vector<std::string> names() const {
         std::vector<std::string> n;
@@ -33,27 +41,53 @@ public:
     /// Create an object; unknown types give "file:line: unknown <tag> type 'x' (supported: ...)".
     std::shared_ptr<T> create(const Properties& props, Extra... extra) const {
         const auto it = factories_.find(props.type());
-        if (it == factories_.end()) {
-            std::string list;
-            for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
-            failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")");
-        }
+        if (it == factories_.end()) failUnknownType(props);
         auto obj = it->second(props, extra...);
         props.checkUnqueried();
         return obj;
     }
 
+    /// Advice for a known plugin of the scene format that iris cannot honour ("use ... instead"),
+    /// added to its "unknown type" message.
+    void addHint(const std::string& name, const std::string& advice) { hints_[name] = advice; }
+
+    /// The one message for a type no plugin registered:
+    /// "file:line: unknown <tag> type 'x' (supported: a, b, ...)[: advice]".
+    [[noreturn]] void failUnknownType(const Properties& props) const {
+        std::string list;
+        for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
+        const auto hint = hints_.find(props.type());
+        failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")",
+               hint == hints_.end() ? std::string() : ": " + hint->second);
+    }
+
 private:
     std::map<std::string, Factory> factories_;
+    std::map<std::string, std::string> hints_;
 };
 
 // Each object kind declares its registry beside its interface, in its own layer (for example
 // MaterialRegistry in materials/material.h): this header names no type above core/.
 
 /// Static registration helper: `static Registrar<MaterialRegistry> reg("diffuse", &create);`
+/// A duplicate name is reported on stderr and the program exits with status 1 (exceptions cannot
+/// leave a static initialiser).
 template <typename R>
 struct Registrar {
-    Registrar(const std::string& name, typename R::Factory f) { R::instance().add(name, std::move(f)); }
+    Registrar(const std::string& name, typename R::Factory f) {
+        try {
+            R::instance().add(name, std::move(f));
+        } catch (const Error& e) {
+            std::fprintf(stderr, "iris: start-up error: %s\n", e.what());
+            std::exit(1);
+        }
+    }
+};
+
+/// Static registration of advice: `static HintRegistrar<MaterialRegistry> h("null", "use ...");`
+template <typename R>
+struct HintRegistrar {
+    HintRegistrar(const std::string& name, const std::string& advice) { R::instance().addHint(name, advice); }
 };
 
 #define IRIS_CONCAT_IMPL(a, b) a##b
@@ -61,5 +95,8 @@ struct Registrar {
 /// IRIS_REGISTER(MaterialRegistry, "diffuse", factoryFunction);
 #define IRIS_REGISTER(REGISTRY, NAME, FACTORY) \
     static ::iris::Registrar<::iris::REGISTRY> IRIS_CONCAT(irisRegistrar_, __LINE__)(NAME, FACTORY)
+/// IRIS_HINT(MaterialRegistry, "null", "what to use instead");
+#define IRIS_HINT(REGISTRY, NAME, ADVICE) \
+    static ::iris::HintRegistrar<::iris::REGISTRY> IRIS_CONCAT(irisHint_, __LINE__)(NAME, ADVICE)
 
 }  // namespace iris

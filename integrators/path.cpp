@@ -2,16 +2,16 @@
 
 #include "core/error.h"
 #include "core/sampling.h"
-#include "integrators/path.h"
 #include "materials/material.h"
 
 namespace iris {
 
-PathIntegrator::PathIntegrator(const Scene& scene, int maxDepth, int rrDepth, bool hideEmitters)
-    : scene_(scene), maxDepth_(maxDepth < 0 ? std::numeric_limits<int>::max() : maxDepth), rrDepth_(rrDepth),
-      hideEmitters_(hideEmitters) {}
+PathIntegrator::PathIntegrator(std::string type, const PathParams& params, int maxDepth, int rrDepth)
+    : Integrator(std::move(type), params.maxDepth), params_(params),
+      maxDepth_(maxDepth < 0 ? std::numeric_limits<int>::max() : maxDepth), rrDepth_(rrDepth),
+      hideEmitters_(params.hideEmitters) {}
 
-SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                                    PathStats& stats) const {
     const int n = wl.size();
     SampledSpectrum L(n, 0.0f), beta(n, 1.0f);
@@ -20,19 +20,19 @@ SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl,
     float bsdfPdf = 0.0f;       // solid-angle pdf of the previous BSDF sample (for MIS)
     vec3 prevP(0.0f);
     float etaScale = 1.0f;
-    const auto& lights = scene_.lights();
+    const auto& lights = scene.lights();
     const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
     ++stats.paths;
 
     // depth = number of path segments so far (the camera ray is segment 1).
     for (int depth = 1;; ++depth) {
         ++stats.rays;
-        const std::optional<SurfaceInteraction> hit = scene_.intersect(ray);
+        const std::optional<SurfaceInteraction> hit = scene.intersect(ray);
         const bool countEmission = !(hideEmitters_ && depth == 1);
 
         if (!hit) {
             if (countEmission)
-                for (const Light* light : scene_.infiniteLights()) {
+                for (const Light* light : scene.infiniteLights()) {
                     const SampledSpectrum Le = light->Le(vec3(0.0f), vec3(0.0f), ray.d, wl);
                     if (depth == 1 || specularBounce) {
                         L += beta * Le;
@@ -88,7 +88,7 @@ SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl,
                 const bool sideOk = glm::dot(ls->wi, si.ng) * wi.z > 0;
                 if (sideOk && !f.isBlack()) {
                     ++stats.rays;
-                    const bool vis = ls->infinite ? scene_.visibleInfinite(si, ls->wi) : scene_.visible(si, ls->pLight, ls->nLight);
+                    const bool vis = ls->infinite ? scene.visibleInfinite(si, ls->wi) : scene.visible(si, ls->pLight, ls->nLight);
                     if (vis) {
                         f *= std::abs(wi.z);
                         if (light.isDelta()) {
@@ -134,10 +134,37 @@ SampledSpectrum PathIntegrator::Li(const Ray& cameraRay, SampledWavelengths& wl,
     return L;
 }
 
-std::unique_ptr<Integrator> Integrator::create(const IntegratorDescription& desc, const Scene& scene) {
-    if (desc.type == "path") return std::make_unique<PathIntegrator>(scene, desc.maxDepth, desc.rrDepth, desc.hideEmitters);
-    if (desc.type == "direct") return std::make_unique<PathIntegrator>(scene, 2, std::numeric_limits<int>::max(), desc.hideEmitters);
-    fail("unknown integrator type '", desc.type, "' (supported: direct, path)");
+namespace {
+
+/// Mitsuba's max_depth, rr_depth and hide_emitters (0.6: maxDepth, rrDepth, hideEmitters).
+PathParams readPathParams(const Properties& p) {
+    PathParams pp;
+    pp.maxDepth = p.getInt("max_depth", -1);
+    if (pp.maxDepth < -1) failAt(p.locationOf("max_depth"), "max_depth must be -1 (unlimited) or >= 0");
+    pp.rrDepth = p.getInt("rr_depth", 5);
+    if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
+    pp.hideEmitters = p.getBool("hide_emitters", false);
+    // Mitsuba 0.6's strictNormals (default false) is accepted and has no effect: iris always
+    // discards a sampled direction whose geometric and shading sides disagree (strict for wi).
+    p.getBool("strict_normals", false);
+    if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
+    return pp;
 }
+
+std::shared_ptr<Integrator> createPath(const Properties& p) {
+    const PathParams pp = readPathParams(p);
+    return std::make_shared<PathIntegrator>(p.type(), pp, pp.maxDepth, pp.rrDepth);
+}
+
+/// Direct illumination: paths of two segments and no Russian roulette, whatever max_depth and
+/// rr_depth say (they are read and recorded).
+std::shared_ptr<Integrator> createDirect(const Properties& p) {
+    return std::make_shared<PathIntegrator>(p.type(), readPathParams(p), 2, std::numeric_limits<int>::max());
+}
+
+}  // namespace
+
+IRIS_REGISTER(IntegratorRegistry, "path", createPath);
+IRIS_REGISTER(IntegratorRegistry, "direct", createDirect);
 
 }  // namespace iris

@@ -8,14 +8,23 @@
 
 namespace iris {
 
+/// The parameters as the scene gave them.
+struct PathParams {
+    int maxDepth = -1;  // −1: unlimited (Russian roulette terminates)
+    int rrDepth = 5;    // Russian roulette starts after this many segments
+    bool hideEmitters = false;
+};
+
 class PathIntegrator final : public Integrator {
 public:
-    PathIntegrator(const Scene& scene, int maxDepth, int rrDepth, bool hideEmitters);
-    SampledSpectrum Li(const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+    /// `maxDepth`, `rrDepth`: the values the paths use (for `direct`: 2 and never).
+    PathIntegrator(std::string type, const PathParams& params, int maxDepth, int rrDepth);
+    SampledSpectrum Li(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                        PathStats& stats) const override;
+    const PathParams& params() const { return params_; }
 
 private:
-    const Scene& scene_;
+    PathParams params_;
     int maxDepth_, rrDepth_;
     bool hideEmitters_;
 };

@@ -53,12 +53,7 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
         if (p.has(etaName) || p.has(kName))
             failAt(p.locationOf("substrate_material"), "give either substrate_material or ", etaName, "/", kName, ", not both");
         const std::string name = p.getString("substrate_material");
-        ConductorSpectra c;
-        try {
-            c = loadConductorPreset(name);
-        } catch (const Error& e) {
-            failAt(p.locationOf("substrate_material"), e.what());
-        }
+        const ConductorSpectra c = withLocation(p.locationOf("substrate_material"), [&] { return loadConductorPreset(name); });
         if (c.mirror()) failAt(p.locationOf("substrate_material"), "substrate_material 'none' (perfect mirror) has no index");
         s.substrateEta = IOR::tabulated(c.eta);
         s.substrateK = IOR::tabulated(c.k);

@@ -241,11 +241,7 @@ float MicrofacetDistribution::pdf(const vec3& wo, const vec3& m) const {
 MicrofacetParams MicrofacetParams::read(const Properties& p, const std::string& defaultDistribution, float defaultAlpha) {
     MicrofacetParams mp;
     const std::string dist = p.getString("distribution", defaultDistribution);
-    try {
-        mp.type = MicrofacetDistribution::parseType(dist);
-    } catch (const Error& e) {
-        failAt(p.locationOf("distribution"), e.what());
-    }
+    mp.type = withLocation(p.locationOf("distribution"), [&] { return MicrofacetDistribution::parseType(dist); });
     const bool aniso = p.has("alpha_u") || p.has("alpha_v");
     if (aniso) {
         if (p.has("alpha")) failAt(p.locationOf("alpha"), "give either 'alpha' or 'alpha_u'/'alpha_v', not both");

@@ -226,11 +226,7 @@ public:
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get());
             c && !(c->value() >= 0 && c->value() <= RoughTransmittanceTables::kAlphaMax))
             failAt(p.locationOf("alpha"), "proposed: alpha must be in [0, 1], got ", c->value());
-        try {
-            type_ = MicrofacetDistribution::parseType(p.getString("distribution", "beckmann"));
-        } catch (const Error& e) {
-            failAt(p.locationOf("distribution"), "proposed: ", e.what());
-        }
+        type_ = withLocation(p.locationOf("distribution"), [&] { return MicrofacetDistribution::parseType(p.getString("distribution", "beckmann")); }, "proposed: ");
         ws_ = getSpectrumTexture(p, "ws", SpectrumKind::Reflectance, 0.6f);
         wd_ = getSpectrumTexture(p, "wd", SpectrumKind::Reflectance, 0.4f);
         // Weights that are one number at every point and wavelength (the thesis' ws, wd): read

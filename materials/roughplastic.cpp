@@ -99,11 +99,7 @@ private:
 class RoughPlasticMaterial final : public Material {
 public:
     explicit RoughPlasticMaterial(const Properties& p) {
-        try {
-            type_ = MicrofacetDistribution::parseType(p.getString("distribution", "beckmann"));
-        } catch (const Error& e) {
-            failAt(p.locationOf("distribution"), "roughplastic: ", e.what());
-        }
+        type_ = withLocation(p.locationOf("distribution"), [&] { return MicrofacetDistribution::parseType(p.getString("distribution", "beckmann")); }, "roughplastic: ");
         alpha_ = getFloatTexture(p, "alpha", 0.1f);
         // Mitsuba 3's defaults "polypropylene" and "air"; a float or a preset name (spectral/ior_params.h).
         const float intIor = readConstantIOR(p, "int_ior", 1.49f), extIor = readConstantIOR(p, "ext_ior", 1.000277f);

@@ -12,43 +12,6 @@
 
 namespace iris {
 
-PixelFilter::PixelFilter(const CameraDescription& d) : type_(d.filter), radius_(d.filterRadius), stddev_(d.gaussianStddev) {
-    if (!(radius_ > 0)) fail("pixel filter radius must be positive, got ", radius_);
-    if (!(stddev_ > 0)) fail("gaussian filter stddev must be positive, got ", stddev_);
-    if (type_ != CameraDescription::Filter::Gaussian) return;
-    // Truncated Gaussian on [−3σ, 3σ]: CDF(x) = (erf(x/(σ√2)) + erf(a/(σ√2))) / (2 erf(a/(σ√2))).
-    // Invert at 1025 evenly spaced probabilities by Newton's method on erf (in double).
-    const int n = 1025;
-    const double a = 3.0 * stddev_, s = stddev_ * std::sqrt(2.0), ea = std::erf(a / s);
-    inverseCdf_.resize(n);
-    for (int i = 0; i < n; ++i) {
-        const double target = (2.0 * i / (n - 1) - 1.0) * ea;  // erf(x/s) = target
-        double x = 0.0;
-        for (int it = 0; it < 50; ++it) {
-            const double f = std::erf(x / s) - target;
-            const double df = 2.0 / std::sqrt(M_PI) * std::exp(-(x / s) * (x / s)) / s;
-            const double next = std::clamp(x - f / df, -a, a);
-            if (std::abs(next - x) < 1e-12) break;
-            x = next;
-        }
-        inverseCdf_[i] = float(x);
-    }
-    inverseCdf_.front() = float(-a);
-    inverseCdf_.back() = float(a);
-}
-
-float PixelFilter::sample1D(float u) const {
-    const float t = u * float(inverseCdf_.size() - 1);
-    const int i = std::min(int(t), int(inverseCdf_.size()) - 2);
-    const float f = t - float(i);
-    return (1.0f - f) * inverseCdf_[i] + f * inverseCdf_[i + 1];
-}
-
-vec2 PixelFilter::sample(const vec2& u) const {
-    if (type_ == CameraDescription::Filter::Box) return (2.0f * u - vec2(1.0f)) * radius_;
-    return vec2(sample1D(u.x), sample1D(u.y));
-}
-
 Film::Film(int width, int height) : width_(width), height_(height) {
     if (width <= 0 || height <= 0) fail("film size must be positive, got ", width, "x", height);
     const uint64_t n = uint64_t(width) * uint64_t(height);
@@ -101,6 +64,14 @@ std::vector<float> Film::meanImage() const {
             img[i + 1] = p.y;
             img[i + 2] = p.z;
         }
+    return img;
+}
+
+std::vector<float> Film::secondMomentImage() const {
+    std::vector<float> img(3 * size_t(width_) * height_, 0.0f);
+    for (size_t i = 0; i < count_.size(); ++i)
+        if (count_[i] > 0)
+            for (int c = 0; c < 3; ++c) img[3 * i + c] = float(sumSq_[3 * i + c] / count_[i]);
     return img;
 }
 
@@ -218,7 +189,6 @@ void Film::takeBody(const std::string& in, size_t pos, const std::string& path, 
     if (in.size() != payloadBytes(count_.size()) + headerBytes)
         fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
              height_, " film with this header has ", payloadBytes(count_.size()) + headerBytes, ")");
-    checkChecksum(in, path);
     take(in, pos, sum_.data(), sum_.size());
     take(in, pos, sumSq_.data(), sumSq_.size());
     take(in, pos, count_.data(), count_.size());
@@ -228,12 +198,16 @@ void Film::load(const std::string& path, const std::string& key) {
     const std::string in = readWholeFile(path, payloadBytes(count_.size()) + kMaxHeader);
     size_t pos = 0;
     const std::string header = checkedHeader(in, path, pos);
+    if (in.size() != payloadBytes(count_.size()) + header.size())
+        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
+             height_, " film with this header has ", payloadBytes(count_.size()) + header.size(), ")");
+    checkChecksum(in, path);
     int32_t w = 0, h = 0;
     take(in, pos, &w, 1);
     take(in, pos, &h, 1);
     if (w != width_ || h != height_) fail(path, ": checkpoint film size differs");
     Film loaded(w, h);  // fill a copy: any error leaves this film as it was
-    loaded.takeBody(in, pos, path, header.size());  // size, then checksum
+    loaded.takeBody(in, pos, path, header.size());
     if (firstLine(header) != key) fail(path, ": checkpoint was made with a different scene or settings");
     *this = std::move(loaded);
 }
@@ -246,7 +220,8 @@ Film Film::read(const std::string& path, std::string* header) {
     take(in, pos, &w, 1);
     take(in, pos, &h, 1);
     Film film(w, h);  // validates the size
-    film.takeBody(in, pos, path, header->size());
+    if (in.size() == payloadBytes(uint64_t(w) * uint64_t(h)) + header->size()) checkChecksum(in, path);
+    film.takeBody(in, pos, path, header->size());  // the size error if it differs
     return film;
 }
 

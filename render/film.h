@@ -1,8 +1,9 @@
 // The film: per-pixel sums of sample values (XYZ in spectral mode, linear Rec.709 RGB in RGB mode)
-// with per-pixel sample counts. Pixel filtering is done by filter importance sampling (each sample
-// lands in one pixel with weight 1, offsets drawn from the filter), so the pixel value is the plain
-// mean of its samples: renders of the same scene with different seeds can be merged by weighting
-// with their sample counts, and sums are independent of threads.
+// with per-pixel sample counts. Pixel filtering is done by filter importance sampling
+// (render/filters/rfilter.h: each sample lands in one pixel, offsets drawn from the filter, weight 1
+// unless the filter has negative lobes), so the pixel value is the plain mean of its samples:
+// renders of the same scene with different seeds can be merged by weighting with their sample
+// counts, and sums are independent of threads.
 //
 // The sums are exact and order-independent: each sample value is rounded once to a fixed-point
 // number (48 fraction bits, a 128-bit integer) and the integers are added, which is associative.
@@ -19,25 +20,8 @@
 #include <vector>
 
 #include "core/math.h"
-#include "render/scene_description.h"
 
 namespace iris {
-
-/// Samples a film-plane offset (pixels) from the pixel filter: box of half-width r, or a Gaussian
-/// of standard deviation σ truncated at 3σ (Mitsuba's default gaussian: σ = 0.5 px). The Gaussian
-/// is sampled per axis through a tabulated inverse CDF (built once, 1025 entries, linear
-/// interpolation; the table is exact at its nodes to float precision).
-class PixelFilter {
-public:
-    explicit PixelFilter(const CameraDescription& d);
-    vec2 sample(const vec2& u) const;
-
-private:
-    float sample1D(float u) const;
-    CameraDescription::Filter type_;
-    float radius_, stddev_;
-    std::vector<float> inverseCdf_;
-};
 
 class Film {
 public:
@@ -72,6 +56,8 @@ public:
 
     /// Interleaved 3-channel mean image.
     std::vector<float> meanImage() const;
+    /// Interleaved 3-channel mean of the squared samples (the second moment; 0 where no samples).
+    std::vector<float> secondMomentImage() const;
     /// Interleaved 3-channel estimated variance of each pixel's mean: s²/n with the unbiased
     /// sample variance s² (0 where fewer than 2 samples).
     std::vector<float> varianceOfMeanImage() const;

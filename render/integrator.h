@@ -1,10 +1,14 @@
 // Light transport algorithms. An integrator estimates the radiance arriving along a camera ray at
-// the path's wavelengths.
+// the path's wavelengths. Every integrator type registers a factory in IntegratorRegistry under
+// its scene-file name (integrators/); it reads its parameters when the scene is loaded and is
+// given the scene when it renders.
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "core/arena.h"
+#include "core/registry.h"
 #include "core/rng.h"
 #include "render/scene.h"
 
@@ -18,12 +22,23 @@ struct PathStats {
 
 class Integrator {
 public:
+    /// `type`: the scene-file name; `maxDepth`: Mitsuba's max_depth (−1 = unlimited); both are
+    /// recorded in the image's metadata and in checkpoints.
+    Integrator(std::string type, int maxDepth) : type_(std::move(type)), maxDepth_(maxDepth) {}
     virtual ~Integrator() = default;
-    virtual SampledSpectrum Li(const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
-                               PathStats& stats) const = 0;
+    virtual SampledSpectrum Li(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler,
+                               Arena& arena, PathStats& stats) const = 0;
+    const std::string& type() const { return type_; }
+    int maxDepth() const { return maxDepth_; }
 
-    /// "path" or "direct"; throws iris::Error for unknown types.
-    static std::unique_ptr<Integrator> create(const IntegratorDescription& desc, const Scene& scene);
+private:
+    std::string type_;
+    int maxDepth_;
 };
+
+using IntegratorRegistry = Registry<Integrator>;
+
+/// An integrator of the given type with its default parameters (for scenes built in code).
+IntegratorPtr makeIntegrator(const std::string& type);
 
 }  // namespace iris

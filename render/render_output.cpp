@@ -1,6 +1,7 @@
 #include "render/render_output.h"
 
 #include "core/error.h"
+#include "render/integrator.h"
 #include "render/scene.h"
 
 namespace iris {
@@ -36,8 +37,8 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, c
         {"iris.rays", std::to_string(st.rays)},
         {"iris.invalid_samples", std::to_string(st.invalidSamples)},
         {"iris.interrupted", st.interrupted ? "1" : "0"},
-        {"iris.integrator", scene.description().integrator.type},
-        {"iris.max_depth", std::to_string(scene.description().integrator.maxDepth)},
+        {"iris.integrator", scene.description().integrator ? scene.description().integrator->type() : std::string("path")},
+        {"iris.max_depth", std::to_string(scene.description().integrator ? scene.description().integrator->maxDepth() : -1)},
         {"iris.colorspace", outputSpace},
         {"iris.ocio_config", colors.configPath()},
     };

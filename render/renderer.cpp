@@ -11,7 +11,6 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include "render/camera.h"
 #include "core/error.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
@@ -112,12 +111,13 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(sc
 
 std::string Renderer::settingsKey() const {
     const CameraDescription& c = scene_.description().camera;
+    const IntegratorPtr& integrator = scene_.description().integrator;
     return strCat("scene=", scene_.description().sourceFile, ";mode=", opt_.rgbMode ? "rgb" : "spectral",
                   ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
-                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", scene_.description().integrator.type,
-                  ";maxdepth=", scene_.description().integrator.maxDepth, ";scene_hash=", opt_.sceneHash,
+                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : "path",
+                  ";maxdepth=", integrator ? integrator->maxDepth() : -1, ";scene_hash=", opt_.sceneHash,
                   ";first_sample=", opt_.firstSample);
 }
 
@@ -128,13 +128,14 @@ std::string Renderer::stateHeader() const {
 
 RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral) const {
     const auto start = Clock::now();
-    const Camera camera(scene_.description().camera);
-    if (film.width() != camera.width() || film.height() != camera.height()) fail("film and camera sizes differ");
+    const CameraDescription& camera = scene_.description().camera;
+    if (!camera.sensor) fail("the scene has no sensor");
+    if (film.width() != camera.width || film.height() != camera.height) fail("film and camera sizes differ");
+    const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter("gaussian");
+    const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator("path");
     if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (RGB-mode channels are not wavelength samples)");
     if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
         fail("the spectral film must have the film's size and start empty");
-    const PixelFilter filter(scene_.description().camera);
-    const std::unique_ptr<Integrator> integrator = Integrator::create(scene_.description().integrator, scene_);
 
     std::unique_ptr<tbb::global_control> limit;
     if (opt_.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt_.threads);
@@ -201,10 +202,10 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                                                 : opt_.uniformWavelengths
                                                     ? SampledWavelengths::sampleUniform(sampler.get1D(), opt_.spectralSamples)
                                                     : SampledWavelengths::sampleVisible(sampler.get1D(), opt_.spectralSamples);
-                        const vec2 offset = filter.sample(sampler.get2D());
-                        const Ray ray = camera.generateRay(vec2(x + 0.5f, y + 0.5f) + offset);
+                        const FilterSample fs = filter->sample(sampler.get2D());
+                        const Ray ray = camera.sensor->generateRay(vec2(x + 0.5f, y + 0.5f) + fs.offset);
                         ts.arena.reset();
-                        SampledSpectrum L = integrator->Li(ray, wl, sampler, ts.arena, ts.stats);
+                        SampledSpectrum L = integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
                         vec3 value;
                         if (opt_.rgbMode)
                             value = vec3(L[0], L[1], L[2]);
@@ -215,8 +216,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                             ++ts.invalid;
                             value = vec3(0.0f);
                         }
-                        film.addSample(x, y, value);
-                        if (spectral) valid ? spectral->addSample(x, y, L, wl) : spectral->addZeroSample(x, y);
+                        film.addSample(x, y, fs.weight == 1.0f ? value : fs.weight * value);
+                        if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
                     }
                 const int done = ++tilesDone;
                 if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);

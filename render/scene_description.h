@@ -1,15 +1,20 @@
-// Everything a scene file describes, as plain data: the scene loader fills it, Scene::build()
-// turns it into Embree geometry, lights and a camera. Units: scene units for lengths; radiance
+// Everything a scene file describes: the scene loader (render/loader/) fills it with the objects
+// the plugin registries created, and Scene's constructor (render/scene.cpp) turns it into Embree
+// geometry and the light list. Units: scene units for lengths; radiance
 // in the relative units of docs/conventions.md.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/math.h"
 #include "core/mesh.h"
 #include "materials/material.h"
+#include "render/films/ldr_tonemap.h"
+#include "render/filters/rfilter.h"
+#include "render/sensors/sensor.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
@@ -28,29 +33,24 @@ struct ShapeDescription {
     std::string name;                    // for messages
 };
 
+/// The sensor with its film: image size, reconstruction filter, and the sensor plugin bound to
+/// that size.
 struct CameraDescription {
-    mat4 toWorld{1.0f};  // camera looks along +z of its frame, up is +y (Mitsuba convention)
-    float fovDegrees = 45.0f;
-    enum class FovAxis { X, Y, Diagonal, Smaller, Larger } fovAxis = FovAxis::X;
     int width = 512, height = 512;
-    enum class Filter { Box, Gaussian } filter = Filter::Gaussian;
-    float filterRadius = 0.5f;        // box: half-width in pixels; gaussian: see film/filter.h
-    float gaussianStddev = 0.5f;      // pixels (Mitsuba's default)
+    ReconstructionFilterPtr filter;  // nullptr: Mitsuba's default, a gaussian of stddev 0.5 px
+    SensorPtr sensor;                // created for width × height (render/sensors/)
+    std::optional<LdrSettings> ldr;  // an ldrfilm's tone mapping for the PNG (render/films/)
 };
 
-struct IntegratorDescription {
-    std::string type = "path";  // "path" or "direct"
-    int maxDepth = -1;          // -1: unlimited (Russian roulette terminates)
-    int rrDepth = 5;            // Russian roulette starts after this many bounces
-    bool hideEmitters = false;
-};
+class Integrator;
+using IntegratorPtr = std::shared_ptr<const Integrator>;
 
 struct SceneDescription {
     std::string sourceFile;  // for messages and metadata
     std::vector<ShapeDescription> shapes;
     std::vector<std::shared_ptr<Light>> lights;  // non-area lights (point, spot, env, ...)
     CameraDescription camera;
-    IntegratorDescription integrator;
+    IntegratorPtr integrator;  // render/integrator.h; the loader gives "path" when the scene names none
     int spp = 16;  // sampler sample_count
 };
 

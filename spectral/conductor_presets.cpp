@@ -53,15 +53,11 @@ ConductorIOR readConductor(const Properties& p) {
         s.k = readIOR(p, "k", IOR(), IorQuantity::ConductorOptics);
     } else {
         const std::string name = p.getString("material", "none");
-        try {
-            const ConductorSpectra preset = loadConductorPreset(name);
-            s.mirror = preset.mirror();
-            if (!s.mirror) {
-                s.eta = IOR::tabulated(preset.eta);
-                s.k = IOR::tabulated(preset.k);
-            }
-        } catch (const Error& e) {
-            failAt(p.locationOf("material"), e.what());
+        const ConductorSpectra preset = withLocation(p.locationOf("material"), [&] { return loadConductorPreset(name); });
+        s.mirror = preset.mirror();
+        if (!s.mirror) {
+            s.eta = IOR::tabulated(preset.eta);
+            s.k = IOR::tabulated(preset.k);
         }
     }
     s.extIOR = readConstantIOR(p, "ext_ior", 1.0f);

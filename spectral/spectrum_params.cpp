@@ -5,7 +5,8 @@
 namespace iris {
 
 SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc) {
-    try {
+    // File errors already name their file; withLocation adds where the scene asked for it.
+    return withLocation(loc, [&]() -> SpectrumPtr {
         switch (v.type) {
             case SpectrumValue::Type::Constant:
                 return std::make_shared<ConstantSpectrum>(v.constant, kind);
@@ -16,11 +17,8 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
             case SpectrumValue::Type::Blackbody:
                 return makeBlackbodySpectrum(v.temperature, v.scale);
         }
-    } catch (const Error& e) {
-        // File errors already name their file; add where the scene asked for it.
-        failAt(loc, e.what());
-    }
-    failAt(loc, "invalid spectrum value");
+        fail("invalid spectrum value");
+    });
 }
 
 /// A plain number as a spectrum. Emitters multiply it by D65 with Y = 1 (as Mitsuba 3 does), so a

@@ -12,6 +12,7 @@
 
 #include "apps/python/bindings.h"
 #include "render/loader/scene_loader.h"
+#include "render/integrator.h"
 #include "render/render_output.h"
 #include "render/scene_hash.h"
 #include "render/renderer.h"
@@ -28,6 +29,12 @@ struct PyScene {
     std::shared_ptr<const Scene> scene;
     std::string hash;  // render/scene_hash.h for a file ("" for a string), as `render` records it
 };
+
+/// The scene's integrator type ("path" when the file names none).
+std::string integratorType(const PyScene& s) {
+    const auto& i = s.scene->description().integrator;
+    return i ? i->type() : std::string("path");
+}
 
 PyScene makeScene(const std::string& path, SceneDescription desc, std::string hash = {}) {
     py::gil_scoped_release release;  // building the Embree scene can take a while
@@ -205,14 +212,14 @@ void bindRender(py::module_& m) {
         .def_property_readonly("width", [](const PyScene& s) { return s.scene->description().camera.width; })
         .def_property_readonly("height", [](const PyScene& s) { return s.scene->description().camera.height; })
         .def_property_readonly("spp", [](const PyScene& s) { return s.scene->description().spp; })
-        .def_property_readonly("integrator", [](const PyScene& s) { return s.scene->description().integrator.type; })
-        .def_property_readonly("max_depth", [](const PyScene& s) { return s.scene->description().integrator.maxDepth; })
+        .def_property_readonly("integrator", [](const PyScene& s) { return integratorType(s); })
+        .def_property_readonly("max_depth", [](const PyScene& s) { const auto& i = s.scene->description().integrator; return i ? i->maxDepth() : -1; })
         .def_property_readonly("triangle_count", [](const PyScene& s) { return s.scene->triangleCount(); })
         .def_property_readonly("light_count", [](const PyScene& s) { return s.scene->lights().size(); })
         .def("__repr__", [](const PyScene& s) {
             const auto& d = s.scene->description();
             return strCat("<iris.Scene '", s.path, "' ", d.camera.width, "x", d.camera.height, ", ", s.scene->triangleCount(),
-                          " triangles, ", s.scene->lights().size(), " lights, integrator ", d.integrator.type, ">");
+                          " triangles, ", s.scene->lights().size(), " lights, integrator ", integratorType(s), ">");
         });
     m.def("load_file", &loadFile, py::arg("path"), py::arg("defines"));
     m.def("load_string", &loadString, py::arg("xml"), py::arg("base_dir"), py::arg("defines"));

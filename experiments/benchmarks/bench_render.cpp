@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
 #include "render/loader/scene_loader.h"
 #include "render/renderer.h"
 #include "core/rng.h"
@@ -37,11 +36,11 @@ const std::vector<Ray>& rayBatch() {
     static std::vector<Ray> rays = [] {
         std::vector<Ray> out;
         const Scene& sc = scene();
-        const Camera cam(sc.description().camera);
+        const CameraDescription& cam = sc.description().camera;
         Sampler sampler(1234);
-        for (int y = 0; y < cam.height(); ++y)
-            for (int x = 0; x < cam.width(); ++x) {
-                const Ray r = cam.generateRay(vec2(x + sampler.get1D(), y + sampler.get1D()));
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                const Ray r = cam.sensor->generateRay(vec2(x + sampler.get1D(), y + sampler.get1D()));
                 out.push_back(r);
                 if (const auto hit = sc.intersect(r)) {
                     const Frame f = Frame::fromNormal(glm::dot(hit->ng, r.d) < 0 ? hit->ng : -hit->ng);

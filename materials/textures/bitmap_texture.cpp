@@ -32,11 +32,7 @@ struct BitmapParams {
         const bool raw = p.getBool("raw", false);
         filter = Bitmap::parseFilter(p.getString("filter_type", "bilinear"), p.locationOf("filter_type"));
         wrap = Bitmap::parseWrap(p.getString("wrap_mode", "repeat"), p.locationOf("wrap_mode"));
-        try {
-            bitmap = Bitmap::load(file, raw);
-        } catch (const Error& e) {
-            failAt(p.locationOf("filename"), e.what());
-        }
+        bitmap = withLocation(p.locationOf("filename"), [&] { return Bitmap::load(file, raw); });
     }
 };
 

@@ -164,12 +164,7 @@ private:
 
 std::shared_ptr<Light> createEnvMap(const Properties& p) {
     const std::string file = p.getString("filename");
-    Image img;
-    try {
-        img = readImage(file);
-    } catch (const Error& e) {
-        failAt(p.locationOf("filename"), e.what());
-    }
+    Image img = withLocation(p.locationOf("filename"), [&] { return readImage(file); });
     if (img.width < 1 || img.height < 1) failAt(p.locationOf("filename"), file, ": empty environment map");
     const float scale = p.getFloat("scale", 1.0f);
     if (!(scale >= 0) || !std::isfinite(scale)) failAt(p.locationOf("scale"), "envmap scale must be a finite value >= 0");

@@ -1,117 +1,48 @@
 #include "render/loader/scene_loader.h"
 
-#include "render/loader/shape_loader.h"
 #include "core/xml/xml_parser.h"
-#include "core/registry.h"
+#include "render/films/film_description.h"
+#include "render/integrator.h"
 #include "render/lights/light.h"
+#include "render/loader/shape_loader.h"
+#include "render/samplers/sampler_description.h"
+#include "render/sensors/sensor.h"
 
 namespace iris {
 
 namespace {
 
-constexpr int kMaxFilmSide = 1 << 16;
-constexpr int64_t kMaxFilmPixels = int64_t(1) << 28;
-constexpr int kMaxSamples = 1 << 24;
+/// A sensor's film and sampler, named or nested without a name (Mitsuba: one of each).
+struct SensorChildren {
+    PropertiesPtr film, sampler;
+};
 
-void loadIntegrator(const Properties& p, IntegratorDescription& d) {
-    if (p.type() != "path" && p.type() != "direct")
-        failAt(p.location(), "integrator type '", p.type(), "' is not supported (supported: direct, path)");
-    d.type = p.type();
-    d.maxDepth = p.getInt("max_depth", -1);
-    if (d.maxDepth < -1) failAt(p.locationOf("max_depth"), "max_depth must be -1 (unlimited) or >= 0");
-    d.rrDepth = p.getInt("rr_depth", 5);
-    if (d.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
-    d.hideEmitters = p.getBool("hide_emitters", false);
-    if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
-    p.checkUnqueried();
-}
-
-void loadFilter(const Properties& p, CameraDescription& cam) {
-    if (p.type() == "box") {
-        cam.filter = CameraDescription::Filter::Box;
-        cam.filterRadius = p.getFloat("radius", 0.5f);
-        if (!(cam.filterRadius > 0)) failAt(p.locationOf("radius"), "box filter radius must be positive");
-    } else if (p.type() == "gaussian") {
-        cam.filter = CameraDescription::Filter::Gaussian;
-        cam.gaussianStddev = p.getFloat("stddev", 0.5f);
-        if (!(cam.gaussianStddev > 0)) failAt(p.locationOf("stddev"), "gaussian filter stddev must be positive");
-        cam.filterRadius = 3.0f * cam.gaussianStddev;  // the film truncates the Gaussian at 3 stddev
-    } else if (p.type() == "tent" || p.type() == "mitchell" || p.type() == "catmullrom" || p.type() == "lanczos") {
-        failAt(p.location(), "rfilter type '", p.type(), "' is not supported yet (supported: box, gaussian)");
-    } else {
-        failAt(p.location(), "unknown rfilter type '", p.type(), "' (supported: box, gaussian)");
+SensorChildren readSensorChildren(const Properties& p) {
+    SensorChildren c{p.getObject("film", false), p.getObject("sampler", false)};
+    for (const PropertiesPtr& child : p.children()) {
+        if (child->tag() != "film" && child->tag() != "sampler")
+            failAt(child->location(), "unexpected <", child->tag(), "> inside <sensor> (allowed: film, sampler)");
+        PropertiesPtr& slot = child->tag() == "film" ? c.film : c.sampler;
+        if (slot) failAt(child->location(), "sensor has more than one <", child->tag(), ">");
+        slot = child;
     }
-    p.checkUnqueried();
+    return c;
 }
 
-void loadFilm(const Properties& p, CameraDescription& cam) {
-    if (p.type() != "hdrfilm") failAt(p.location(), "film type '", p.type(), "' is not supported (supported: hdrfilm)");
-    cam.width = p.getInt("width", 768);  // Mitsuba's defaults
-    cam.height = p.getInt("height", 576);
-    if (cam.width < 1 || cam.height < 1 || cam.width > kMaxFilmSide || cam.height > kMaxFilmSide ||
-        int64_t(cam.width) * cam.height > kMaxFilmPixels)
-        failAt(p.location(), "film size ", cam.width, "x", cam.height, " is out of range (1..", kMaxFilmSide,
-               " per side, at most 2^28 pixels)");
-    const std::string fmt = p.getString("pixel_format", "rgb");
-    if (fmt != "rgb" && fmt != "rgba")
-        failAt(p.locationOf("pixel_format"), "pixel_format '", fmt, "' is not supported (supported: rgb, rgba)");
-    const std::string comp = p.getString("component_format", "float32");
-    if (comp != "float16" && comp != "float32")
-        failAt(p.locationOf("component_format"), "component_format '", comp, "' is not supported (supported: float16, float32)");
-    p.getString("file_format", "openexr");  // the output format is chosen by the application
-    p.getBool("banner", false);
-    PropertiesPtr filter = p.getObject("rfilter", false);
-    for (const PropertiesPtr& c : p.children()) {
-        if (c->tag() != "rfilter") failAt(c->location(), "unexpected <", c->tag(), "> inside <film>");
-        if (filter) failAt(c->location(), "film has more than one rfilter");
-        filter = c;
-    }
-    if (filter) loadFilter(*filter, cam);
-    p.checkUnqueried();
-}
-
-int loadSampler(const Properties& p) {
-    // Every sampler type is accepted: the renderer uses its own sample sequence, only the count matters.
-    const int spp = p.getInt("sample_count", 4);
-    if (spp < 1 || spp > kMaxSamples) failAt(p.locationOf("sample_count"), "sample_count must be in 1..", kMaxSamples);
-    p.getInt("seed", 0);
-    p.getInt("dimension", 0);
-    p.getBool("jitter", true);
-    p.checkUnqueried();
-    return spp;
-}
-
+/// The sensor plugin, bound to its film's size; the film plugin (default: hdrfilm with Mitsuba's
+/// defaults) and the sampler plugin (its sample count; without one the scene keeps 16 spp).
 void loadSensor(const Properties& p, SceneDescription& scene) {
-    if (p.type() != "perspective")
-        failAt(p.location(), "sensor type '", p.type(), "' is not supported (supported: perspective)");
+    const SensorChildren c = readSensorChildren(p);
+    const FilmDescription film =
+        c.film ? *FilmRegistry::instance().create(*c.film)
+               : *FilmRegistry::instance().create(Properties("film", "hdrfilm", p.location()));
     CameraDescription& cam = scene.camera;
-    cam.toWorld = p.getTransform("to_world");
-    // Default: a 50 mm lens on 36 mm-wide film, fov_x = 2 atan(18 / 50) ≈ 39.6°.
-    cam.fovDegrees = p.getFloat("fov", 2.0f * std::atan(18.0f / 50.0f) * 180.0f / kPi);
-    if (!(cam.fovDegrees > 0 && cam.fovDegrees < 180)) failAt(p.locationOf("fov"), "fov must be in (0, 180) degrees");
-    const std::string axis = p.getString("fov_axis", "x");
-    using A = CameraDescription::FovAxis;
-    if (axis == "x") cam.fovAxis = A::X;
-    else if (axis == "y") cam.fovAxis = A::Y;
-    else if (axis == "diagonal") cam.fovAxis = A::Diagonal;
-    else if (axis == "smaller") cam.fovAxis = A::Smaller;
-    else if (axis == "larger") cam.fovAxis = A::Larger;
-    else failAt(p.locationOf("fov_axis"), "fov_axis '", axis, "' is not one of x, y, diagonal, smaller, larger");
-    // Accepted and ignored: a pinhole camera has no clipping planes or focus.
-    p.getFloat("near_clip", 0.01f);
-    p.getFloat("far_clip", 1e4f);
-    p.getFloat("focus_distance", 0.0f);
-    PropertiesPtr film = p.getObject("film", false), sampler = p.getObject("sampler", false);
-    for (const PropertiesPtr& c : p.children()) {
-        if (c->tag() != "film" && c->tag() != "sampler")
-            failAt(c->location(), "unexpected <", c->tag(), "> inside <sensor> (allowed: film, sampler)");
-        PropertiesPtr& slot = c->tag() == "film" ? film : sampler;
-        if (slot) failAt(c->location(), "sensor has more than one <", c->tag(), ">");
-        slot = c;
-    }
-    if (film) loadFilm(*film, cam);
-    if (sampler) scene.spp = loadSampler(*sampler);
-    p.checkUnqueried();
+    cam.width = film.width;
+    cam.height = film.height;
+    cam.filter = film.filter;
+    cam.ldr = film.ldr;
+    cam.sensor = SensorRegistry::instance().create(p, FilmSize{film.width, film.height});
+    if (c.sampler) scene.spp = SamplerRegistry::instance().create(*c.sampler)->sampleCount;
 }
 
 void loadEmitter(const Properties& p, SceneDescription& scene) {
@@ -123,34 +54,57 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
     scene.lights.push_back(LightRegistry::instance().create(p));
 }
 
+void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {
+    const std::string& tag = p.tag();
+    if (tag == "shape") {
+        scene.shapes.push_back(loadShape(p));
+    } else if (tag == "bsdf") {
+        materialFor(p);  // created now so that its errors show even when unused
+    } else if (tag == "texture") {
+        // Built by the material that uses it (which knows the spectrum kind).
+    } else if (tag == "emitter") {
+        loadEmitter(p, scene);
+    } else if (tag == "sensor") {
+        if (haveSensor) failAt(p.location(), "only one <sensor> is supported");
+        haveSensor = true;
+        loadSensor(p, scene);
+    } else if (tag == "integrator") {
+        if (haveIntegrator) failAt(p.location(), "only one <integrator> is supported");
+        haveIntegrator = true;
+        scene.integrator = IntegratorRegistry::instance().create(p);
+    } else if (tag == "sampler" || tag == "film" || tag == "rfilter") {
+        failAt(p.location(), "<", tag, "> must be inside a <sensor>");
+    } else if (tag == "medium" || tag == "phase") {
+        failAt(p.location(), "<", tag, " type=\"", p.type(), "\">: iris has no participating media (surfaces in vacuum only); "
+               "remove the <", tag, "> and the shapes' interior/exterior references, and use integrator 'path'");
+    } else {
+        failAt(p.location(), "<", tag, "> is not supported yet");
+    }
+}
+
+/// Every top-level object is loaded even after one fails, so that a file with several problems
+/// reports all of them at once: one iris::Error whose lines are the "file:line: problem" messages.
 SceneDescription build(ParsedScene parsed) {
     SceneDescription scene;
     scene.sourceFile = parsed.sourceFile;
     bool haveSensor = false, haveIntegrator = false;
-    for (const PropertiesPtr& obj : parsed.objects) {
-        const Properties& p = *obj;
-        const std::string& tag = p.tag();
-        if (tag == "shape") {
-            scene.shapes.push_back(loadShape(p));
-        } else if (tag == "bsdf") {
-            materialFor(p);  // created now so that its errors show even when unused
-        } else if (tag == "texture") {
-            // Built by the material that uses it (which knows the spectrum kind).
-        } else if (tag == "emitter") {
-            loadEmitter(p, scene);
-        } else if (tag == "sensor") {
-            if (haveSensor) failAt(p.location(), "only one <sensor> is supported");
-            haveSensor = true;
-            loadSensor(p, scene);
-        } else if (tag == "integrator") {
-            if (haveIntegrator) failAt(p.location(), "only one <integrator> is supported");
-            haveIntegrator = true;
-            loadIntegrator(p, scene.integrator);
-        } else if (tag == "sampler" || tag == "film" || tag == "rfilter") {
-            failAt(p.location(), "<", tag, "> must be inside a <sensor>");
-        } else {
-            failAt(p.location(), "<", tag, "> is not supported yet");
+    std::vector<std::string> problems;
+    auto attempt = [&](auto&& load) {
+        try {
+            load();
+        } catch (const Error& e) {
+            problems.emplace_back(e.what());
         }
+    };
+    for (const PropertiesPtr& obj : parsed.objects)
+        attempt([&] { loadObject(*obj, scene, haveSensor, haveIntegrator); });
+    if (!haveSensor)  // Mitsuba's default sensor
+        attempt([&] { loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene); });
+    if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", "path", {}));
+    if (!problems.empty()) {
+        std::string all;
+        for (const std::string& m : problems) all += (all.empty() ? "" : "\n") + m;
+        fail(all);
     }
     return scene;
 }

@@ -1,5 +1,5 @@
-// Shapes of a parsed scene: mesh files (obj, ply, serialized) and built-in shapes (sphere,
-// rectangle, cube, disk) with their attached bsdf and area emitter.
+// Shapes of a parsed scene: the shape plugin its type names (ShapeRegistry, render/shapes/) with
+// the attached bsdf and area emitter.
 #pragma once
 
 #include "core/properties.h"
@@ -11,8 +11,7 @@ namespace iris {
 ShapeDescription loadShape(const Properties& shape);
 
 /// The material for a <bsdf> Properties, created once per Properties object (so every <ref> to
-/// one id shares it). Types missing from MaterialRegistry give "file:line: bsdf type 'x' is not
-/// supported yet (supported: ...)".
+/// one id shares it). Unknown types give "file:line: unknown bsdf type 'x' (supported: ...)".
 MaterialPtr materialFor(const Properties& bsdf);
 
 }  // namespace iris

@@ -196,3 +196,24 @@ TEST(RenderApp, BadInputGivesOneLineErrorAndNonZeroExit) {
         EXPECT_NE(r.stderrText.find("render:"), std::string::npos) << opt;
     }
 }
+
+TEST(RenderApp, MomentIntegratorWritesFirstAndSecondMomentChannels) {
+    std::string xml = kSmallScene;
+    const std::string path = R"(<integrator type="path"/>)";
+    xml.replace(xml.find(path), path.size(), R"(<integrator type="moment"><integrator type="path"/></integrator>)");
+    const std::string scene = tempPath("moment.xml"), out = tempPath("moment.exr");
+    writeTextFile(scene, xml);
+    const RunResult r = runCommand(appPath("render") + " " + scene + " -o " + out + " --spp 4 --mode rgb --no-png --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    const Image img = readImage(out);
+    ASSERT_EQ(img.channels, 9);
+    const int m1 = img.channelIndex("moment1.G"), m2 = img.channelIndex("moment2.G"), g = img.channelIndex("G");
+    ASSERT_GE(m1, 0);
+    ASSERT_GE(m2, 0);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            EXPECT_FLOAT_EQ(img.at(x, y, m1), img.at(x, y, g));  // RGB mode: the film is linear Rec.709
+            EXPECT_GE(img.at(x, y, m2) * (1 + 1e-5f), img.at(x, y, m1) * img.at(x, y, m1));  // E[X²] >= E[X]²
+        }
+    EXPECT_EQ(metadataValue(readEXRMetadata(out), "iris.integrator"), "moment");
+}

@@ -12,16 +12,16 @@
 using namespace iris;
 
 TEST(PixelFilter, GaussianSamplesMatchTruncatedGaussian) {
-    CameraDescription d;
-    d.filter = CameraDescription::Filter::Gaussian;
-    d.gaussianStddev = 0.5f;
-    const PixelFilter filter(d);
+    const ReconstructionFilterPtr gaussian = makeFilter("gaussian");  // stddev 0.5 px
+    const ReconstructionFilter& filter = *gaussian;
     // Chi-square of 100k x-offsets in 30 bins over [−1.5, 1.5] against the truncated Gaussian.
     const int bins = 30, n = 100000;
     std::vector<double> counts(bins, 0.0);
     Pcg32 rng(3, 5);
     for (int i = 0; i < n; ++i) {
-        const vec2 o = filter.sample(vec2(rng.uniform(), rng.uniform()));
+        const FilterSample fs = filter.sample(vec2(rng.uniform(), rng.uniform()));
+        ASSERT_EQ(fs.weight, 1.0f);
+        const vec2 o = fs.offset;
         ASSERT_LE(std::abs(o.x), 1.5f + 1e-6f);
         counts[std::clamp(int((o.x + 1.5f) / 3.0f * bins), 0, bins - 1)] += 1;
     }
@@ -36,14 +36,12 @@ TEST(PixelFilter, GaussianSamplesMatchTruncatedGaussian) {
 }
 
 TEST(PixelFilter, BoxSamplesAreUniform) {
-    CameraDescription d;
-    d.filter = CameraDescription::Filter::Box;
-    d.filterRadius = 0.5f;
-    const PixelFilter filter(d);
-    EXPECT_EQ(filter.sample(vec2(0.0f)), vec2(-0.5f));
-    EXPECT_EQ(filter.sample(vec2(0.5f)), vec2(0.0f));
-    d.filterRadius = -1;
-    EXPECT_THROW(PixelFilter{d}, Error);
+    const ReconstructionFilterPtr filter = makeFilter("box");  // radius 0.5 px
+    EXPECT_EQ(filter->sample(vec2(0.0f)).offset, vec2(-0.5f));
+    EXPECT_EQ(filter->sample(vec2(0.5f)).offset, vec2(0.0f));
+    Properties bad("rfilter", "box", SourceLocation{"f.xml", 3});
+    bad.set("radius", -1.0f, SourceLocation{"f.xml", 4});
+    EXPECT_THROW(RFilterRegistry::instance().create(bad), Error);
 }
 
 TEST(Film, MeanAndCounts) {

@@ -33,11 +33,8 @@ SceneDescription floorScene(float albedo) {
     cam[1] = vec4(0, 1, 0, 0);
     cam[2] = vec4(0, 0, -1, 0);
     cam[3] = vec4(0, 0, 0.5f, 1);
-    d.camera.toWorld = cam;
-    d.camera.fovDegrees = 0.01f;
-    d.camera.width = d.camera.height = 4;
-    d.camera.filter = CameraDescription::Filter::Box;
-    d.integrator.type = "direct";
+    iris::testing::setCamera(d.camera, cam, 0.01f, 4, 4);
+    d.integrator = iris::testing::makeIntegrator("direct", -1);
     return d;
 }
 
@@ -78,8 +75,7 @@ TEST(Lights, SphereLightIrradianceIsAnalytic) {
     // diffuse floor's radiance is ρ/π E = ρ L (r/h)² (the floor point is far from the horizon).
     for (const char* integrator : {"direct", "path"}) {
         SceneDescription d = floorScene(0.5f);
-        d.integrator.type = integrator;
-        d.integrator.maxDepth = 2;
+        d.integrator = iris::testing::makeIntegrator(integrator, 2);
         const float r = 0.5f, h = 3.0f, L = 4.0f;
         d.shapes.push_back(sphereLight(vec3(0, 0, h), r, L));
         const Scene scene(std::move(d));

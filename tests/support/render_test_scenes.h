@@ -4,7 +4,9 @@
 #include "render/lights/light.h"
 #include "core/properties.h"
 #include "core/registry.h"
+#include "render/integrator.h"
 #include "render/scene_description.h"
+#include "render/sensors/perspective.h"
 #include "materials/material.h"
 
 namespace iris::testing {
@@ -21,6 +23,21 @@ inline LightPtr makeConstantEnvironment(float radiance) {
     return LightRegistry::instance().create(p);
 }
 
+/// A path or direct integrator with the given max_depth (−1: unlimited).
+inline IntegratorPtr makeIntegrator(const std::string& type, int maxDepth) {
+    Properties p("integrator", type, SourceLocation{"<test>", 0});
+    p.set("max_depth", int64_t(maxDepth), SourceLocation{"<test>", 0});
+    return IntegratorRegistry::instance().create(p);
+}
+
+/// A perspective camera of fov_axis x bound to a width × height film with a box filter.
+inline void setCamera(CameraDescription& c, const mat4& toWorld, float fovDegrees, int width, int height) {
+    c.width = width;
+    c.height = height;
+    c.sensor = std::make_shared<PerspectiveSensor>(toWorld, fovDegrees, FovAxis::X, FilmSize{width, height});
+    c.filter = makeFilter("box");
+}
+
 /// A unit sphere of the given albedo seen from z = −4 filling the central pixels, inside a
 /// uniform environment of radiance 1 (the white furnace).
 inline SceneDescription furnaceScene(float albedo, int res = 16, int spp = 64) {
@@ -34,14 +51,10 @@ inline SceneDescription furnaceScene(float albedo, int res = 16, int spp = 64) {
     s.name = "sphere";
     d.shapes.push_back(s);
     d.lights.push_back(makeConstantEnvironment(1.0f));
-    d.camera.toWorld = glm::inverse(glm::lookAt(vec3(0, 0, -4), vec3(0.0f), vec3(0, 1, 0)));
     // glm::lookAt looks along −z; Mitsuba cameras look along +z: flip x and z.
-    d.camera.toWorld = d.camera.toWorld * glm::scale(mat4(1.0f), vec3(-1, 1, -1));
-    d.camera.fovDegrees = 40.0f;
-    d.camera.width = d.camera.height = res;
-    d.camera.filter = CameraDescription::Filter::Box;
-    d.integrator.type = "path";
-    d.integrator.maxDepth = -1;
+    const mat4 toWorld = glm::inverse(glm::lookAt(vec3(0, 0, -4), vec3(0.0f), vec3(0, 1, 0))) * glm::scale(mat4(1.0f), vec3(-1, 1, -1));
+    setCamera(d.camera, toWorld, 40.0f, res, res);
+    d.integrator = makeIntegrator("path", -1);
     d.spp = spp;
     return d;
 }

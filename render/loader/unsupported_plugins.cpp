@@ -1,0 +1,29 @@
+// Mitsuba plugins iris cannot honour, with what to use instead: their "unknown <tag> type"
+// errors (core/registry.h) end with this advice. Media and phase functions are refused by the
+// scene loader itself (render/loader/scene_loader.cpp).
+#include "render/integrator.h"
+#include "render/lights/light.h"
+#include "render/shapes/shape.h"
+#include "materials/material.h"
+
+namespace iris {
+
+IRIS_HINT(MaterialRegistry, "null",
+          "iris has no invisible (null) surface; it marks medium boundaries in Mitsuba, and iris has no media: remove the shape, "
+          "or give it a dielectric with int_ior equal to ext_ior");
+IRIS_HINT(MaterialRegistry, "mask",
+          "iris has no opacity masks: cut the holes into the mesh, or drop the mask and keep its nested bsdf");
+IRIS_HINT(MaterialRegistry, "hair", "iris has no hair BSDF: use roughconductor or roughdielectric as an approximation");
+IRIS_HINT(LightRegistry, "projector", "iris has no projector emitter: use 'spot' (a cone of constant intensity)");
+IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a rendered sky image");
+IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");
+IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
+IRIS_HINT(IntegratorRegistry, "volpath",
+          "iris has no participating media: use 'path', which gives the same image when the scene has no media");
+IRIS_HINT(IntegratorRegistry, "volpathmis",
+          "iris has no participating media: use 'path', which gives the same image when the scene has no media");
+IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
+IRIS_HINT(ShapeRegistry, "shapegroup", "iris has no instancing: write the shapes out in place");
+IRIS_HINT(ShapeRegistry, "instance", "iris has no instancing: write the shapes out in place");
+
+}  // namespace iris

@@ -1,0 +1,49 @@
+// A scene file with several problems reports all of them in one error (one "file:line:" line
+// each), and a Mitsuba plugin iris cannot honour names what to use instead.
+#include <gtest/gtest.h>
+
+#include "render/loader/scene_loader.h"
+
+using namespace iris;
+
+namespace {
+std::string loadError(const std::string& body, const std::string& version = "3.0.0") {
+    try {
+        loadSceneFromString("<scene version=\"" + version + "\">\n" + body + "</scene>\n", ".");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+TEST(LoaderProblems, EveryProblemOfAFileAtOnce) {
+    const std::string msg = loadError(
+        "<integrator type=\"path\"><integer name=\"maxdepth\" value=\"3\"/><boolean name=\"bogus\" value=\"true\"/></integrator>\n"
+        "<sensor type=\"perspective\"><film type=\"hdrfilm\"><rfilter type=\"sinc\"/></film></sensor>\n"
+        "<shape type=\"sphere\"><bsdf type=\"plasticky\"/></shape>\n"
+        "<shape type=\"torus\"/>\n");
+    EXPECT_TRUE(has(msg, "<string>:2: unknown parameter 'maxdepth'")) << msg;
+    EXPECT_TRUE(has(msg, "<string>:2: unknown parameter 'bogus'")) << msg;  // both unknown parameters
+    EXPECT_TRUE(has(msg, "<string>:3: unknown rfilter type 'sinc'")) << msg;
+    EXPECT_TRUE(has(msg, "<string>:4: unknown bsdf type 'plasticky'")) << msg;
+    EXPECT_TRUE(has(msg, "<string>:5: unknown shape type 'torus'")) << msg;
+    EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 4) << msg;  // five lines, one per problem
+}
+
+TEST(LoaderProblems, AMitsuba06FileWithStrictNormalsLoads) {
+    EXPECT_EQ(loadError("<integrator type=\"path\"><boolean name=\"strictNormals\" value=\"true\"/></integrator>\n", "0.6.0"), "");
+}
+
+TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
+    const std::string null = loadError("<shape type=\"sphere\">\n<bsdf type=\"null\"/></shape>\n");
+    EXPECT_TRUE(has(null, "<string>:3: unknown bsdf type 'null'")) << null;
+    EXPECT_TRUE(has(null, "dielectric")) << null;
+    EXPECT_TRUE(has(loadError("<integrator type=\"volpath\"/>\n"), "use 'path'"));
+    EXPECT_TRUE(has(loadError("<emitter type=\"projector\"/>\n"), "use 'spot'"));
+    EXPECT_TRUE(has(loadError("<shape type=\"sphere\">\n<bsdf type=\"mask\"/></shape>\n"), "cut the holes"));
+    const std::string medium = loadError("<medium type=\"homogeneous\" id=\"fog\"/>\n");
+    EXPECT_TRUE(has(medium, "<string>:2:")) << medium;
+    EXPECT_TRUE(has(medium, "no participating media")) << medium;
+}
