@@ -39,6 +39,8 @@ Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
 Output
   -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it
   --no-png                 do not write the .png beside the .exr
+  --variance FILE          also write each pixel's estimated variance of the mean (s²/n from the
+                           per-sample second moments) in CIE XYZ to the EXR FILE (channels X, Y, Z)
   --output-space NAME      colour space of the EXR (default lin_rec709; any space of the OCIO config)
   --ocio-config FILE       OpenColorIO config (default: $OCIO, else the shipped spectral/ocio/config.ocio)
   --display NAME, --view NAME   display/view for the PNG (default: the config's defaults)
@@ -89,6 +91,16 @@ double parseDouble(const std::string& opt, const std::string& v) {
     }
 }
 
+/// The 3x3 matrix of a linear colour-space conversion, read off OpenColorIO's images of the unit
+/// vectors (columns of the matrix).
+mat3 linearMap(const ColorManager& colors, const std::string& from, const std::string& to) {
+    float basis[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    colors.convert(basis, 3, from, to);
+    mat3 m;
+    for (int k = 0; k < 3; ++k) m[k] = vec3(basis[3 * k], basis[3 * k + 1], basis[3 * k + 2]);
+    return m;
+}
+
 std::string replaceExtension(const std::string& path, const std::string& ext) {
     return std::filesystem::path(path).replace_extension(ext).string();
 }
@@ -97,7 +109,7 @@ std::string replaceExtension(const std::string& path, const std::string& ext) {
 
 int main(int argc, char** argv) {
     std::string scenePath, output = "out.exr", outputSpace = kColorSpaceLinearRec709, ocioConfig, display, view;
-    std::string checkpoint;
+    std::string checkpoint, variancePath;
     bool writePng = true, quiet = false, resume = false;
     std::map<std::string, std::string> defines;
     RenderOptions opt;
@@ -117,6 +129,7 @@ int main(int argc, char** argv) {
             return 0;
         } else if (a == "-o" || a == "--output") output = value();
         else if (a == "--no-png") writePng = false;
+        else if (a == "--variance") variancePath = value();
         else if (a == "--output-space") outputSpace = value();
         else if (a == "--ocio-config") ocioConfig = value();
         else if (a == "--display") display = value();
@@ -174,6 +187,8 @@ int main(int argc, char** argv) {
     }
     if (scenePath.empty()) scenePath = sourcePath("scenes/default.xml");
     if ((resume || opt.checkpointEvery > 0) && checkpoint.empty()) usageError("--resume and --checkpoint-every need --checkpoint FILE");
+    // An RGB-mode film keeps XYZ second moments for --variance; a checkpoint does not record that.
+    if (!variancePath.empty() && !checkpoint.empty() && opt.rgbMode) usageError("--variance cannot be combined with --checkpoint in --mode rgb");
     opt.checkpointPath = checkpoint;
     opt.resume = resume;
     opt.progress = !quiet && isatty(STDERR_FILENO);
@@ -186,6 +201,8 @@ int main(int argc, char** argv) {
         const Scene scene(std::move(desc));
         const Renderer renderer(scene, opt);
         Film film(scene.description().camera.width, scene.description().camera.height);
+        const std::string filmSpace = opt.rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ;
+        if (!variancePath.empty() && opt.rgbMode) film.setMomentSpace(linearMap(colors, filmSpace, kColorSpaceXYZ));
         if (resume) film.load(checkpoint, renderer.settingsKey());
 
         std::signal(SIGINT, onSignal);
@@ -197,7 +214,6 @@ int main(int argc, char** argv) {
         // Film values → output colour space, through OpenColorIO.
         Image img(film.width(), film.height(), 3);
         img.pixels = film.meanImage();
-        const std::string filmSpace = opt.rgbMode ? kColorSpaceLinearRec709 : kColorSpaceXYZ;
         Image out = img;
         colors.convert(out.pixels.data(), out.pixelCount(), filmSpace, outputSpace);
 
@@ -224,6 +240,12 @@ int main(int argc, char** argv) {
         const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
                              std::filesystem::path(output).extension() == ".jpg";
         if (!pngOnly) writeEXR(output, out, meta);
+        if (!variancePath.empty()) {
+            Image var(film.width(), film.height(), 3);
+            var.pixels = film.varianceOfMeanImage();
+            var.channelNames = {"X", "Y", "Z"};
+            writeEXR(variancePath, var, meta);
+        }
         if (pngOnly || writePng) {
             Image ldr = img;
             colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmSpace, display, view);

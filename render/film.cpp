@@ -91,7 +91,11 @@ std::vector<float> Film::varianceOfMeanImage() const {
         const double n = count_[i];
         if (n < 2) continue;
         for (int c = 0; c < 3; ++c) {
-            const double mean = sum_[3 * i + c] / n;
+            double mean = sum_[3 * i + c] / n;
+            if (hasMomentSpace_) {  // E[(M v)_c] = Σ_k M_ck E[v_k] (glm is column-major: M[k][c])
+                mean = 0.0;
+                for (int k = 0; k < 3; ++k) mean += double(momentSpace_[k][c]) * sum_[3 * i + k] / n;
+            }
             const double var = std::max(0.0, (sumSq_[3 * i + c] - n * mean * mean) / (n - 1));
             img[3 * i + c] = float(var / n);
         }

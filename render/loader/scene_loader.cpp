@@ -14,6 +14,14 @@ constexpr int64_t kMaxFilmPixels = int64_t(1) << 28;
 constexpr int kMaxSamples = 1 << 24;
 
 void loadIntegrator(const Properties& p, IntegratorDescription& d) {
+    // Mitsuba 3's `moment` wraps one integrator and adds its per-pixel first and second moments as
+    // AOVs; iris's film always keeps both (render --variance writes them), so it renders the inner one.
+    if (p.type() == "moment") {
+        if (p.children().size() != 1 || p.children()[0]->tag() != "integrator")
+            failAt(p.location(), "integrator 'moment' needs exactly one nested <integrator>");
+        p.checkUnqueried();
+        return loadIntegrator(*p.children()[0], d);
+    }
     if (p.type() != "path" && p.type() != "direct")
         failAt(p.location(), "integrator type '", p.type(), "' is not supported (supported: direct, path)");
     d.type = p.type();

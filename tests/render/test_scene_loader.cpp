@@ -278,6 +278,16 @@ TEST(SceneLoader, DefaultsDefinesIncludesAndPaths) {
     }
 }
 
+TEST(SceneLoader, MomentIntegratorRendersItsNestedIntegrator) {
+    // Mitsuba 3's test scenes wrap the integrator in `moment` (the film keeps the moments anyway).
+    const SceneDescription s = load("moment.xml", scene(R"(
+<integrator type="moment"><integrator type="direct"><integer name="max_depth" value="2"/></integrator></integrator>
+)"));
+    EXPECT_EQ(s.integrator.type, "direct");
+    EXPECT_EQ(s.integrator.maxDepth, 2);
+    expectLoadError("moment_empty.xml", scene("<integrator type=\"moment\"/>\n"), 2, {"exactly one nested <integrator>"});
+}
+
 TEST(SceneLoader, Mitsuba06Syntax) {
     writeFile("old/tri.obj", kTriangleObj);
     const SceneDescription s = load("old/scene06.xml", scene(R"(
