@@ -69,6 +69,8 @@ Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
 Output
   -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it
   --no-png                 do not write the .png beside the .exr
+  --variance FILE          also write each pixel's estimated variance of the mean (s²/n from the
+                           per-sample second moments) in CIE XYZ to the EXR FILE (channels X, Y, Z)
   --output-space NAME      colour space of the EXR (default lin_rec709; any space of the OCIO config)
   --ocio-config FILE       OpenColorIO config (default: $OCIO, else the shipped spectral/ocio/config.ocio)
   --display NAME, --view NAME   display/view for the PNG (default: the config's defaults)
@@ -128,6 +130,16 @@ double parseDouble(const std::string& opt, const std::string& v) {
     }
 }
 
+/// The 3x3 matrix of a linear colour-space conversion, read off OpenColorIO's images of the unit
+/// vectors (columns of the matrix).
+mat3 linearMap(const ColorManager& colors, const std::string& from, const std::string& to) {
+    float basis[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    colors.convert(basis, 3, from, to);
+    mat3 m;
+    for (int k = 0; k < 3; ++k) m[k] = vec3(basis[3 * k], basis[3 * k + 1], basis[3 * k + 2]);
+    return m;
+}
+
 std::string replaceExtension(const std::string& path, const std::string& ext) {
     return std::filesystem::path(path).replace_extension(ext).string();
 }
@@ -152,7 +164,7 @@ Image withMoments(const Image& img, const Film& film) {
 
 int main(int argc, char** argv) {
     std::string scenePath, output = "out.exr", outputSpace = kColorSpaceLinearRec709, ocioConfig, display, view;
-    std::string checkpoint, spectralOutput;
+    std::string checkpoint, spectralOutput, variancePath;
     double spectralBinWidth = 5.0;
     bool writePng = true, quiet = false, resume = false, sppRange = false;
     std::map<std::string, std::string> defines;
@@ -173,6 +185,7 @@ int main(int argc, char** argv) {
             return 0;
         } else if (a == "-o" || a == "--output") output = value();
         else if (a == "--no-png") writePng = false;
+        else if (a == "--variance") variancePath = value();
         else if (a == "--output-space") outputSpace = value();
         else if (a == "--ocio-config") ocioConfig = value();
         else if (a == "--display") display = value();
@@ -253,6 +266,8 @@ int main(int argc, char** argv) {
     if (!spectralOutput.empty() && opt.rgbMode) usageError("--spectral-output needs --mode spectral (RGB-mode channels are not wavelength samples)");
     if (!spectralOutput.empty() && resume) usageError("--spectral-output cannot be combined with --resume (checkpoints hold the colour film only)");
     if (sppRange && checkpoint.empty()) usageError("--spp-range needs --checkpoint FILE (the film state that `merge` adds up)");
+    // An RGB-mode film keeps XYZ second moments for --variance; a checkpoint does not record that.
+    if (!variancePath.empty() && !checkpoint.empty() && opt.rgbMode) usageError("--variance cannot be combined with --checkpoint in --mode rgb");
     opt.checkpointPath = checkpoint;
     opt.resume = resume;
     opt.progress = !quiet && isatty(STDERR_FILENO);
@@ -267,6 +282,8 @@ int main(int argc, char** argv) {
         opt.onTileFinished = signalHookFromEnvironment();
         const Renderer renderer(scene, opt);
         Film film(scene.description().camera.width, scene.description().camera.height);
+        const std::string filmSpace = filmColorSpace(opt.rgbMode);
+        if (!variancePath.empty() && opt.rgbMode) film.setMomentSpace(linearMap(colors, filmSpace, kColorSpaceXYZ));
         if (resume) film.load(checkpoint, renderer.settingsKey());
         std::optional<SpectralFilm> spectral;
         if (!spectralOutput.empty()) spectral.emplace(film.width(), film.height(), SpectralBins(spectralBinWidth));
@@ -279,7 +296,6 @@ int main(int argc, char** argv) {
 
         // Film values → output colour space, through OpenColorIO (render/render_output.h).
         const Image out = filmImage(film, opt.rgbMode, colors, outputSpace);
-        const std::string filmSpace = filmColorSpace(opt.rgbMode);
         const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
         const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
                              std::filesystem::path(output).extension() == ".jpg";
@@ -289,6 +305,12 @@ int main(int argc, char** argv) {
             spectralMeta.insert(spectralMeta.end(), meta.begin(), meta.end());
             spectralMeta.emplace_back("iris.spectral_bin_width_nm", strCat(spectralBinWidth));
             writeEXR(spectralOutput, spectral->image(), spectralMeta);
+        }
+        if (!variancePath.empty()) {
+            Image var(film.width(), film.height(), 3);
+            var.pixels = film.varianceOfMeanImage();
+            var.channelNames = {"X", "Y", "Z"};
+            writeEXR(variancePath, var, meta);
         }
         if (pngOnly || writePng) {
             Image ldr(film.width(), film.height(), 3);

@@ -53,6 +53,11 @@ public:
     const std::string& id() const { return id_; }
     void setId(std::string id) { id_ = std::move(id); }
     const SourceLocation& location() const { return loc_; }
+    /// Major version of the scene format of the file that defines this object (0 = Mitsuba 0.6,
+    /// 2 or 3 = Mitsuba 2/3; 3 when built in code): plugins whose Mitsuba semantics changed
+    /// between versions choose by it (docs/scene_format.md, "Version-dependent defaults").
+    int formatVersion() const { return formatVersion_; }
+    void setFormatVersion(int major) { formatVersion_ = major; }
     /// Location of a parameter's own element (falls back to the object's location).
     SourceLocation locationOf(const std::string& name) const;
 
@@ -115,6 +120,7 @@ private:
     SourceLocation loc_;
     std::map<std::string, Entry> values_;
     std::vector<PropertiesPtr> children_;
+    int formatVersion_ = 3;
     mutable std::set<std::string> queried_, asked_;
 };
 

@@ -32,6 +32,8 @@ vec3 Film::pixel(int x, int y) const {
 void Film::add(const Film& other) {
     if (other.width_ != width_ || other.height_ != height_)
         fail("cannot add a ", other.width_, "x", other.height_, " film to a ", width_, "x", height_, " film");
+    if (other.hasMomentSpace_ != hasMomentSpace_ || (hasMomentSpace_ && other.momentSpace_ != momentSpace_))
+        fail("cannot add films whose second moments are in different colour spaces");
     for (size_t i = 0; i < sum_.size(); ++i) {
         sum_[i] += other.sum_[i];
         sumSq_[i] += other.sumSq_[i];
@@ -81,7 +83,11 @@ std::vector<float> Film::varianceOfMeanImage() const {
         const double n = count_[i];
         if (n < 2) continue;
         for (int c = 0; c < 3; ++c) {
-            const double mean = double(sum_[3 * i + c]) * 0x1p-48 / n;
+            double mean = double(sum_[3 * i + c]) * 0x1p-48 / n;
+            if (hasMomentSpace_) {  // E[(M v)_c] = Σ_k M_ck E[v_k] (glm is column-major: M[k][c])
+                mean = 0.0;
+                for (int k = 0; k < 3; ++k) mean += double(momentSpace_[k][c]) * (double(sum_[3 * i + k]) * 0x1p-48) / n;
+            }
             const double var = std::max(0.0, (sumSq_[3 * i + c] - n * mean * mean) / (n - 1));
             img[3 * i + c] = float(var / n);
         }

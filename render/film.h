@@ -42,11 +42,20 @@ public:
 
     void addSample(int x, int y, const vec3& value) {
         const size_t i = size_t(y) * width_ + x;
+        const vec3 m = hasMomentSpace_ ? momentSpace_ * value : value;
         for (int c = 0; c < 3; ++c) {
             sum_[3 * i + c] += toFixed(value[c]);
-            sumSq_[3 * i + c] += double(value[c]) * value[c];
+            sumSq_[3 * i + c] += double(m[c]) * m[c];
         }
         count_[i] += 1;
+    }
+    /// Accumulate the second moments of M·value instead of value (call before adding samples), so
+    /// that varianceOfMeanImage() is the per-channel variance in another linear colour space (e.g.
+    /// CIE XYZ for an RGB-mode film: a per-channel RGB variance cannot be converted afterwards
+    /// without the cross-channel covariances).
+    void setMomentSpace(const mat3& m) {
+        momentSpace_ = m;
+        hasMomentSpace_ = true;
     }
     /// Mean of the samples at a pixel (0 if none).
     vec3 pixel(int x, int y) const;
@@ -59,7 +68,7 @@ public:
     /// Interleaved 3-channel mean of the squared samples (the second moment; 0 where no samples).
     std::vector<float> secondMomentImage() const;
     /// Interleaved 3-channel estimated variance of each pixel's mean: s²/n with the unbiased
-    /// sample variance s² (0 where fewer than 2 samples).
+    /// sample variance s² (0 where fewer than 2 samples), in the moment space (setMomentSpace).
     std::vector<float> varianceOfMeanImage() const;
 
     /// Add another film's samples (same size): exact for the sums and counts, so adding the films
@@ -82,6 +91,8 @@ private:
     std::vector<FixedSum> sum_;
     std::vector<double> sumSq_;
     std::vector<uint32_t> count_;
+    mat3 momentSpace_{1.0f};
+    bool hasMomentSpace_ = false;
 };
 
 }  // namespace iris

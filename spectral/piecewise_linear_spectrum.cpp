@@ -6,7 +6,7 @@
 namespace iris {
 
 PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<float> lambdas, std::vector<float> values, SpectrumKind kind)
-    : Spectrum(kind), lambdas_(std::move(lambdas)), values_(std::move(values)) {
+    : Spectrum(kind), zeroOutside_(kind != SpectrumKind::Unbounded), lambdas_(std::move(lambdas)), values_(std::move(values)) {
     if (lambdas_.empty()) fail("piecewise-linear spectrum: no (wavelength, value) pairs");
     if (lambdas_.size() != values_.size())
         fail("piecewise-linear spectrum: ", lambdas_.size(), " wavelengths but ", values_.size(), " values");
@@ -28,13 +28,15 @@ PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<float> lambdas, std
                 uint32_t(std::upper_bound(lambdas_.begin(), lambdas_.end(), edge) - lambdas_.begin());
         }
     }
-    // Constant extrapolation, so the maximum over [360, 830] is at most the largest sample.
+    // Zero or constant extrapolation: the maximum over [360, 830] is at most the largest sample (or 0).
     max_ = *std::max_element(values_.begin(), values_.end());
+    if (zeroOutside_) max_ = std::max(max_, 0.0f);
     rgb_ = rgbProjection([this](float l) { return eval(l); }, kind);
 }
 
 float PiecewiseLinearSpectrum::eval(float lambda) const {
     if (std::isnan(lambda)) return lambda;  // (the binary search used to read past the end)
+    if (zeroOutside_ && (lambda < lambdas_.front() || lambda > lambdas_.back())) return 0.0f;
     if (lambda <= lambdas_.front()) return values_.front();
     if (lambda >= lambdas_.back()) return values_.back();
     // First sample strictly above lambda; lambda lies in [i−1, i).

@@ -1,5 +1,8 @@
-// A spectrum tabulated at arbitrary increasing wavelengths, linearly interpolated, constant
-// outside the table (measured data: .spd files, <spectrum value="λ:v, ..."/>).
+// A spectrum tabulated at arbitrary increasing wavelengths, linearly interpolated (measured data:
+// .spd files, <spectrum value="λ:v, ..."/>). Outside the table a reflectance or an illuminant is 0,
+// as in Mitsuba (0.6 InterpolatedSpectrum, 3 `irregular`: a tabulated spectrum has no energy
+// where it has no data); an Unbounded spectrum (IOR n and k) keeps its end values, since an index
+// of 0 has no physical meaning (a deliberate difference from Mitsuba, docs/scene_format.md).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +30,7 @@ private:
     /// walk finds the same index as the binary search (tests/spectral/test_spectra.cpp compares them).
     size_t upperIndex(float lambda) const;
 
+    bool zeroOutside_;
     std::vector<float> lambdas_, values_;
     std::vector<uint32_t> bucketStart_;  // upper_bound of each bucket's lower edge
     float bucketScale_ = 0;              // buckets per nm

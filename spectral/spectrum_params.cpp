@@ -8,8 +8,8 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     // File errors already name their file; withLocation adds where the scene asked for it.
     return withLocation(loc, [&]() -> SpectrumPtr {
         switch (v.type) {
-            case SpectrumValue::Type::Constant:
-                return std::make_shared<ConstantSpectrum>(v.constant, kind);
+            case SpectrumValue::Type::Constant:  // <spectrum value="0.3"/> is a number, like <float>
+                return spectrumFromNumber(v.constant, kind);
             case SpectrumValue::Type::Pairs:
                 return makePiecewiseLinearSpectrum(v.lambdas, v.values, kind);
             case SpectrumValue::Type::File:
@@ -21,8 +21,9 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     });
 }
 
-/// A plain number as a spectrum. Emitters multiply it by D65 with Y = 1 (as Mitsuba 3 does), so a
-/// float emitter renders the same white, (v, v, v), in spectral and RGB mode.
+/// A plain number as a spectrum, given as <float> or as a single-valued <spectrum>. Emitters
+/// multiply it by D65 with Y = 1 (as Mitsuba 0.6 and 3 do, issue 14 item 7), so it renders the
+/// same white, (v, v, v), in spectral and RGB mode.
 SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind) {
     if (kind == SpectrumKind::Illuminant) return makeRGBSpectrum(vec3(v), kind);
     return std::make_shared<ConstantSpectrum>(v, kind);

@@ -226,6 +226,7 @@ private:
         if (depth > kMaxNesting) failAt(loc(n), "objects nested too deeply (limit ", kMaxNesting, ")");
         checkAttributes(n, {"type", "id", "name"});
         auto props = std::make_shared<Properties>(n.name(), requiredAttr(n, "type"), loc(n));
+        props->setFormatVersion(files_.back().major);
         std::string id;
         if (n.attribute("id")) {
             id = attr(n, "id");

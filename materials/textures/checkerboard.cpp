@@ -1,6 +1,10 @@
 // The `checkerboard` texture (Mitsuba): color0 where the fractional parts of u and v are both
 // ≤ 0.5 or both > 0.5, color1 elsewhere; color0/color1 are spectra or nested textures
 // (defaults 0.4 and 0.2), uv transformed by to_uv first.
+// Mitsuba 2/3's float variant (eval_1, used where a float is read: roughness, weights, opacity)
+// has the opposite test, color0 where exactly one of them is > 0.5 (mitsuba3
+// src/textures/checkerboard.cpp, `eval` vs `eval_1`); Mitsuba 0.6 has only the spectral texture.
+// A float checkerboard of a version 2.x/3.x file therefore swaps the colours, one of 0.6 does not.
 #include "core/registry.h"
 #include "materials/textures/texture_params.h"
 #include "materials/textures/uv_transform.h"
@@ -32,16 +36,18 @@ private:
 class CheckerboardFloat final : public FloatTexture {
 public:
     explicit CheckerboardFloat(const Properties& p)
-        : c0_(getFloatTexture(p, "color0", 0.4f)), c1_(getFloatTexture(p, "color1", 0.2f)), uv_(p) {}
+        : c0_(getFloatTexture(p, "color0", 0.4f)), c1_(getFloatTexture(p, "color1", 0.2f)), uv_(p),
+          swapped_(p.formatVersion() >= 2) {}
     float eval(const TextureQuery& q) const override {
         TextureQuery t = q;
         t.uv = uv_.apply(q.uv);
-        return firstColour(t.uv) ? c0_->eval(t) : c1_->eval(t);
+        return firstColour(t.uv) != swapped_ ? c0_->eval(t) : c1_->eval(t);
     }
 
 private:
     FloatTexturePtr c0_, c1_;
     UVTransform uv_;
+    bool swapped_;  // Mitsuba 2/3 float convention
 };
 
 std::shared_ptr<SpectrumTexture> createSpectrum(const Properties& p, SpectrumKind kind) {

@@ -64,6 +64,33 @@ TEST(RenderApp, RendersSceneWithMetadata) {
     EXPECT_EQ(metadataValue(meta2, "iris.rgb_wavelengths"), "645,525,445");
 }
 
+TEST(RenderApp, VarianceFileHoldsXyzVarianceOfTheMean) {
+    const std::string scene = tempPath("var.xml"), out = tempPath("var.exr"), var = tempPath("var_var.exr");
+    writeTextFile(scene, kSmallScene);
+    for (const char* mode : {"spectral", "rgb"}) {
+        const RunResult r = runCommand(appPath("render") + " " + scene + " -o " + out + " --variance " + var +
+                                       " --spp 4 --mode " + mode + " --quiet --no-png");
+        ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+        const Image v = readImage(var);
+        ASSERT_EQ(v.channels, 3);
+        std::vector<std::string> names = v.channelNames;  // OpenImageIO may list Y (luminance) first
+        std::sort(names.begin(), names.end());
+        EXPECT_EQ(names, (std::vector<std::string>{"X", "Y", "Z"}));
+        double sum = 0.0;
+        for (float x : v.pixels) {
+            EXPECT_GE(x, 0.0f);
+            sum += x;
+        }
+        EXPECT_GT(sum, 0.0) << mode;  // a lit scene at 4 spp has noise
+        EXPECT_EQ(metadataValue(readEXRMetadata(var), "iris.spp"), "4");
+    }
+    // The RGB film's XYZ moments are not part of a checkpoint: the combination is refused.
+    const RunResult bad = runCommand(appPath("render") + " " + scene + " -o " + out + " --variance " + var +
+                                     " --checkpoint " + tempPath("c.ckpt") + " --mode rgb --quiet");
+    EXPECT_EQ(bad.exitCode, 2);
+}
+
+
 // Interruptions are raised by the renderer's test hook (IRIS_TEST_SIGNAL_AFTER_PASSES / _TILES,
 // apps/render.cpp) at an exact point, so these tests do not depend on timing. kSmallScene is
 // 32x24 pixels: 4 tiles of 16x16 per pass.

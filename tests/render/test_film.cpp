@@ -44,6 +44,27 @@ TEST(PixelFilter, BoxSamplesAreUniform) {
     EXPECT_THROW(RFilterRegistry::instance().create(bad), Error);
 }
 
+TEST(Film, VarianceInAnotherColourSpaceUsesTheCrossChannelMoments) {
+    // Samples (1, 0, 0) and (0, 1, 0): per channel the variance of the mean is 1/4 in each of R and G,
+    // but their sum R + G is constant, so in the space (R + G, R − G, B) it is 0 and 1.
+    Film film(1, 1), plain(1, 1);
+    mat3 m(0.0f);
+    m[0] = vec3(1, 1, 0);   // column 0: the image of R
+    m[1] = vec3(1, -1, 0);  // column 1: the image of G
+    m[2] = vec3(0, 0, 1);
+    film.setMomentSpace(m);
+    for (Film* f : {&film, &plain}) {
+        f->addSample(0, 0, vec3(1, 0, 0));
+        f->addSample(0, 0, vec3(0, 1, 0));
+    }
+    EXPECT_EQ(film.pixel(0, 0), plain.pixel(0, 0));  // the mean stays in the film's space
+    const std::vector<float> v = film.varianceOfMeanImage(), p = plain.varianceOfMeanImage();
+    EXPECT_NEAR(v[0], 0.0f, 1e-7f);
+    EXPECT_FLOAT_EQ(v[1], 1.0f);
+    EXPECT_FLOAT_EQ(p[0], 0.25f);  // a per-channel transform of the RGB variances would give 0.5
+    EXPECT_FLOAT_EQ(p[1], 0.25f);
+}
+
 TEST(Film, MeanAndCounts) {
     Film film(3, 2);
     film.addSample(1, 1, vec3(1, 2, 3));

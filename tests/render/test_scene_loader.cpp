@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "render/loader/scene_loader.h"
+#include "core/xml/xml_parser.h"
 #include "core/xml/xml_values.h"
 #include "core/registry.h"
 #include "core/source_tree.h"
@@ -286,6 +287,17 @@ TEST(SceneLoader, DefaultsDefinesIncludesAndPaths) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("<string>:2:"), std::string::npos) << e.what();
     }
+}
+
+TEST(SceneLoader, ObjectsKnowTheFormatVersionOfTheirFile) {
+    // Version-dependent plugin semantics (docs/scene_format.md) read Properties::formatVersion().
+    const ParsedScene s06 = parseSceneString("<scene version=\"0.6.0\"><bsdf type=\"diffuse\" id=\"a\"/></scene>", ".");
+    const ParsedScene s21 = parseSceneString("<scene version=\"2.1.0\"><bsdf type=\"diffuse\" id=\"a\"/></scene>", ".");
+    ASSERT_EQ(s06.objects.size(), 1u);
+    ASSERT_EQ(s21.objects.size(), 1u);
+    EXPECT_EQ(s06.objects[0]->formatVersion(), 0);
+    EXPECT_EQ(s21.objects[0]->formatVersion(), 2);
+    EXPECT_EQ(Properties().formatVersion(), 3);  // objects built in code: Mitsuba 3
 }
 
 TEST(SceneLoader, Mitsuba06Syntax) {

@@ -168,15 +168,22 @@ TEST(SceneLoaderTextures, Checkerboard) {
     EXPECT_FLOAT_EQ(at(0.375f, 0.1f), 0.1f); // uv' = (0.75, 0.2) → color1
     EXPECT_FLOAT_EQ(at(0.375f, 0.375f), 0.9f);
     EXPECT_FLOAT_EQ(at(0.6f, 0.1f), 0.9f);   // next period
+    // Float-valued, Mitsuba 3 (eval_1): color0 where exactly one of u, v has fraction > 0.5 (issue
+    // 14, item 3), the opposite of the spectrum-valued texture above.
     Properties pf("texture", "checkerboard", kLoc);
+    pf.setFormatVersion(3);
     const FloatTexturePtr f = FloatTextureRegistry::instance().create(pf);
     TextureQuery q;
     q.uv = {0.75f, 0.25f};
-    EXPECT_FLOAT_EQ(f->eval(q), 0.2f);  // Mitsuba defaults 0.4 / 0.2
+    EXPECT_FLOAT_EQ(f->eval(q), 0.4f);  // Mitsuba defaults 0.4 / 0.2
     q.uv = {0.75f, 0.75f};
-    EXPECT_FLOAT_EQ(f->eval(q), 0.4f);
-    // Mitsuba 0.6 uv scale and offset (after to_uv): u' = 2u + 0.5.
+    EXPECT_FLOAT_EQ(f->eval(q), 0.2f);
+    q.uv = {0.25f, 0.25f};
+    EXPECT_FLOAT_EQ(f->eval(q), 0.2f);
+    // Mitsuba 0.6 has one checkerboard (the spectral convention also where a float is read), and
+    // its uv scale and offset (after to_uv): u' = 2u + 0.5.
     Properties po("texture", "checkerboard", kLoc);
+    po.setFormatVersion(0);
     po.set("uscale", 2.0f, kLoc);
     po.set("uoffset", 0.5f, kLoc);
     const FloatTexturePtr fo = FloatTextureRegistry::instance().create(po);

@@ -103,6 +103,41 @@ TEST(Spectra, PiecewiseLinearEvalAndErrors) {
     EXPECT_THROW(makePiecewiseLinearSpectrum({400, 500}, {1, NAN}, SpectrumKind::Unbounded), Error);
 }
 
+TEST(Spectra, TabulatedReflectanceAndIlluminantAreZeroOutsideTheirRange) {
+    // Mitsuba's `λ:value` spectra (issue 14, item 8): no data, no energy. Mitsuba 3's
+    // bsdf_spheres light is "400:0, 500:8, 600:15.6, 700:18.4": nothing above 700 nm.
+    for (SpectrumKind kind : {SpectrumKind::Reflectance, SpectrumKind::Illuminant}) {
+        const PiecewiseLinearSpectrum s({400, 500, 700}, {0.5f, 0.8f, 0.7f}, kind);
+        EXPECT_EQ(s.eval(399.0f), 0.0f);
+        EXPECT_EQ(s.eval(701.0f), 0.0f);
+        EXPECT_FLOAT_EQ(s.eval(400.0f), 0.5f);  // the end points are inside
+        EXPECT_FLOAT_EQ(s.eval(700.0f), 0.7f);
+        EXPECT_FLOAT_EQ(s.maxValue(), 0.8f);
+    }
+    // Its RGB projection has no light from beyond 700 nm: redder when the end value is extended
+    // to 830 nm explicitly (the old constant extrapolation), the same in blue.
+    const SpectrumPtr light = makePiecewiseLinearSpectrum({400, 500, 600, 700}, {0, 8, 15.6f, 18.4f}, SpectrumKind::Illuminant);
+    const SpectrumPtr extended =
+        makePiecewiseLinearSpectrum({360, 400, 500, 600, 700, 830}, {0, 0, 8, 15.6f, 18.4f, 18.4f}, SpectrumKind::Illuminant);
+    EXPECT_LT(light->rgbValue().r, 0.999f * extended->rgbValue().r);
+    EXPECT_NEAR(light->rgbValue().b, extended->rgbValue().b, 1e-3f * extended->rgbValue().b);
+}
+
+TEST(Spectra, SingleValuedSpectrumOfAnEmitterIsD65LikeAFloat) {
+    // <spectrum name="radiance" value="0.3"/> is 0.3 x D65 (Y = 1) in Mitsuba 0.6 and 3, like
+    // <float> (issue 14, item 7): white, not the pink of a flat (equal-energy) spectrum.
+    SpectrumValue v;
+    v.constant = 0.3f;
+    const SpectrumPtr fromSpectrum = spectrumFromValue(v, SpectrumKind::Illuminant, SourceLocation{});
+    const SpectrumPtr fromFloat = spectrumFromNumber(0.3f, SpectrumKind::Illuminant);
+    for (float l : {400.0f, 460.0f, 555.0f, 700.0f}) EXPECT_FLOAT_EQ(fromSpectrum->eval(l), fromFloat->eval(l));
+    EXPECT_LT(maxAbsDiff(fromSpectrum->rgbValue(), vec3(0.3f)), 1e-3f);
+    // A reflectance stays the plain constant.
+    const SpectrumPtr refl = spectrumFromValue(v, SpectrumKind::Reflectance, SourceLocation{});
+    EXPECT_FLOAT_EQ(refl->eval(420.0f), 0.3f);
+    EXPECT_FLOAT_EQ(refl->eval(680.0f), 0.3f);
+}
+
 TEST(Spectra, RgbValueOfSpectralReflectanceAndIlluminant) {
     // A perfectly white reflectance reflects D65 with Y = 1: RGB (1, 1, 1).
     const SpectrumPtr white = makePiecewiseLinearSpectrum({360, 830}, {1, 1}, SpectrumKind::Reflectance);
