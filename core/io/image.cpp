@@ -27,6 +27,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/exr_header_check.h"
 #include "core/io/oiio_loader.h"
+#include "core/io/png_header_check.h"
 #include "core/io/png_writer.h"
 
 namespace iris {
@@ -236,6 +237,7 @@ bool readExrDirect(const std::string& path, Image& img) {
 
 /// Read any image through OpenImageIO (the module).
 Image readThroughModule(const std::string& path, ImageFileInfo* info) {
+    checkPngChunkLengths(path);  // before libpng allocates what a chunk claims
     const OiioModule& oiio = oiioModule(path, "read this image");
     char err[1024] = "";
     iris_oiio_info spec{};

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/io/image.h"
+#include "core/io/png_header_check.h"
 #include "core/io/png_writer.h"
 #include "tests/support/app_runner.h"
 
@@ -83,4 +84,22 @@ TEST(PngWriter, WriteLdrPngIsTheEncodersFile) {
     const Image back = readImage(p);
     for (size_t i = 0; i < img.pixels.size(); ++i) EXPECT_EQ(int(std::lround(back.pixels[i] * 255.0f)), int(std::lround(img.pixels[i] * 255.0f)));
     std::filesystem::remove(p);
+}
+
+TEST(PngHeaderCheck, AChunkClaimingMoreThanTheFileIsRefusedBeforeDecoding) {
+    const std::vector<uint8_t> px = testPixels(8, 8, 3);
+    std::vector<uint8_t> png = encodePNG(8, 8, 3, px.data());
+    const std::string ok = writeFile("ok.png", png);
+    EXPECT_NO_THROW(checkPngChunkLengths(ok));
+    png[33] = 0x7f;  // the IDAT chunk's length (after the 8-byte signature and the 25-byte IHDR chunk)
+    const std::string bad = writeFile("claims.png", png);
+    try {
+        checkPngChunkLengths(bad);
+        FAIL() << "a chunk claiming ~2 GB was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("chunk 'IDAT' claims"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(readImage(bad), Error);
+    std::filesystem::remove(ok);
+    std::filesystem::remove(bad);
 }
