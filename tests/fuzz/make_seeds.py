@@ -6,6 +6,7 @@ oom-*) are added by hand beside them and are never rewritten here.
     python3 tests/fuzz/make_seeds.py            # needs oiiotool for the image seeds
 """
 import os
+import sys
 import struct
 import subprocess
 import tempfile
@@ -98,6 +99,19 @@ def image_seeds():
                 put('image', name, f.read())
 
 
+def spectral_image_seed():
+    # A 2x2 spectral EXR in the layout of Fichet et al. 2021 (render --spectral-output): three
+    # S0.<nm>nm channels, through the experiments' uncompressed EXR writer.
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'experiments'))
+    import numpy as np
+    from iris_experiments import exr
+    px = np.linspace(0.1, 0.9, 12, dtype=np.float32).reshape(2, 2, 3)
+    os.makedirs(os.path.join(CORPUS, 'image'), exist_ok=True)
+    exr.write_exr(os.path.join(CORPUS, 'image', 'seed-spectral.exr'), px,
+                  channels=('S0.450,000000nm', 'S0.550,000000nm', 'S0.650,000000nm'),
+                  metadata={'spectralLayoutVersion': '1.0', 'emissiveUnits': 'W.m^-2.sr^-1'})
+
+
 def checkpoint_seeds():
     # Film::save's format 4 (render/film.cpp) for a 4x3 film and the header "fuzz\nsamples=0:2":
     # int128 fixed-point sums (48 fraction bits), double sums of squares, counts, CRC-32.
@@ -179,5 +193,6 @@ if __name__ == '__main__':
     serialized_seeds()
     spd_seeds()
     image_seeds()
+    spectral_image_seed()
     checkpoint_seeds()
     scene_seeds()
