@@ -165,7 +165,7 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
 
 py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t seed, int threads, bool rgbMode,
                         int spectralSamples, const std::vector<float>& rgbWavelengths, bool uniformWavelengths,
-                        int spectralBins, const std::string& outputSpace, const std::string& ocioConfig,
+                        bool independentWavelengths, int spectralBins, const std::string& outputSpace, const std::string& ocioConfig,
                         const py::object& progress) {
     RenderOptions opt;
     opt.spp = spp;
@@ -176,6 +176,7 @@ py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t se
     opt.spectralSamples = spectralSamples;
     if (!rgbWavelengths.empty()) opt.rgbWavelengths = vec3(rgbWavelengths[0], rgbWavelengths[1], rgbWavelengths[2]);
     opt.uniformWavelengths = uniformWavelengths;
+    opt.independentWavelengths = independentWavelengths;
     RenderOutput r = render(s, opt, spectralBins, outputSpace, ocioConfig, progress);
     const py::ssize_t h = r.image.height, w = r.image.width;
     py::dict d;
@@ -225,7 +226,7 @@ void bindRender(py::module_& m) {
     m.def("load_string", &loadString, py::arg("xml"), py::arg("base_dir"), py::arg("defines"));
     m.def("render", &renderToPython, py::arg("scene"), py::arg("spp"), py::arg("time_limit"), py::arg("seed"),
           py::arg("threads"), py::arg("rgb_mode"), py::arg("spectral_samples"), py::arg("rgb_wavelengths"),
-          py::arg("uniform_wavelengths"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
+          py::arg("uniform_wavelengths"), py::arg("independent_wavelengths"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
     m.def("source_path", &sourcePath, py::arg("relative"));
 }
 

@@ -59,6 +59,13 @@ class RenderEqualsCLI(unittest.TestCase):
         self.assertTrue(np.all(r.sample_count == 3))
         self.assertTrue(np.all(r.variance >= 0))
 
+    def test_independent_wavelengths_equal_cli(self):
+        r = self.compare(dict(spp=2, seed=4, wavelength_sampling="independent"),
+                         ["--spp", "2", "--seed", "4", "--wavelength-sampling", "independent"])
+        self.assertEqual(r.metadata["iris.wavelength_sampling"], "independent")
+        with self.assertRaises(iris.Error):
+            iris.render(iris.load_file(SCENE, res=8), spp=1, wavelength_sampling="stratified")
+
     def test_rgb_render_equals_cli(self):
         self.compare(dict(spp=2, seed=1, mode="rgb"), ["--spp", "2", "--seed", "1", "--mode", "rgb"])
 

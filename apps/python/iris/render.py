@@ -105,12 +105,14 @@ def _count(name: str, value, lo: int, hi: int | None = None) -> int:
 def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", spectral_samples: int = 4,
            seed: int = 0, threads: int = 0, time_limit: float | None = None, sampler: str | None = None,
            colorspace: str = "lin_rec709", rgb_wavelengths=None, uniform_wavelengths: bool = False,
-           progress=None, ocio_config: str | None = None, spectral_bins: int = 0) -> RenderResult:
+           progress=None, ocio_config: str | None = None, spectral_bins: int = 0,
+           wavelength_sampling: str = "hero") -> RenderResult:
     """Render `scene` (from load_file / load_string). The options are the `render` executable's:
     spp (None: the scene's sampler sample_count; 0 with time_limit: render until the time is up),
     mode "spectral" (spectral_samples wavelengths per path) or "rgb", seed, threads (0: all cores),
     time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
-    rgb_wavelengths (R, G, B in nm), uniform_wavelengths. `sampler` may only be "independent":
+    rgb_wavelengths (R, G, B in nm), uniform_wavelengths, wavelength_sampling ("hero", the default,
+    or "independent": render --wavelength-sampling). `sampler` may only be "independent":
     the renderer has one sample sequence (a PCG32 stream per pixel and sample). `progress`: a
     callable receiving the fraction done, or True for a bar on stderr. `spectral_bins` > 0 (spectral
     mode) also returns `spectral`: per pixel the spectral radiance averaged over that many equal
@@ -119,6 +121,8 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         raise TypeError(f"scene: expected an iris.Scene (from iris.load_file or iris.load_string), got {type(scene).__name__}")
     if mode not in ("spectral", "rgb"):
         raise _iris.Error(f"mode: unknown '{mode}' (expected spectral or rgb)")
+    if wavelength_sampling not in ("hero", "independent"):
+        raise _iris.Error(f"wavelength_sampling: unknown '{wavelength_sampling}' (expected hero or independent)")
     if sampler not in (None, "independent"):
         raise _iris.Error(f"sampler: '{sampler}' is not supported (the renderer draws every sample from its own "
                           "PCG32 stream per pixel and sample index: use None or 'independent')")
@@ -138,7 +142,8 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         raise TypeError("progress: expected a callable taking the fraction done, or True")
     d = _iris.render(scene, spp, limit, _count("seed", seed, 0, 2**63 - 1), _count("threads", threads, 0),
                      mode == "rgb", _count("spectral_samples", spectral_samples, 1, 32),
-                     _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths), bins, colorspace, ocio_config or "",
+                     _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths),
+                     wavelength_sampling == "independent", bins, colorspace, ocio_config or "",
                      callback)
     result = RenderResult(d["image"], d["variance"], d["sample_count"], d["metadata"], d["stats"],
                           spectral=d.get("spectral"), spectral_wavelengths=d.get("spectral_wavelengths"),
