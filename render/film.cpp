@@ -165,8 +165,14 @@ std::string checkedHeader(const std::string& in, const std::string& path, size_t
     return in.substr(kFixedPrefix, hlen);
 }
 
-/// The CRC-32 of everything before the last 4 bytes must equal them.
-void checkChecksum(const std::string& in, const std::string& path) {
+/// A checkpoint of a w×h film with this header has exactly payloadBytes(w·h) + header bytes, and
+/// the CRC-32 of everything before its last 4 bytes equals them (size first, so that a truncated
+/// file is called truncated, not corrupted).
+void checkSizeAndChecksum(const std::string& in, const std::string& path, int w, int h, size_t headerBytes) {
+    const uint64_t expected = payloadBytes(uint64_t(w) * uint64_t(h)) + headerBytes;
+    if (in.size() != expected)
+        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", w, "x", h,
+             " film with this header has ", expected, ")");
     uint32_t stored = 0;
     std::memcpy(&stored, in.data() + in.size() - 4, 4);
     if (crcOf(in.data(), in.size() - 4) != stored) fail(path, ": checkpoint is corrupted (CRC-32 mismatch); render again without --resume");
@@ -191,10 +197,7 @@ void Film::save(const std::string& path, const std::string& header) const {
     writeFileAtomically(path, out);
 }
 
-void Film::takeBody(const std::string& in, size_t pos, const std::string& path, size_t headerBytes) {
-    if (in.size() != payloadBytes(count_.size()) + headerBytes)
-        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
-             height_, " film with this header has ", payloadBytes(count_.size()) + headerBytes, ")");
+void Film::takeBody(const std::string& in, size_t pos) {
     take(in, pos, sum_.data(), sum_.size());
     take(in, pos, sumSq_.data(), sumSq_.size());
     take(in, pos, count_.data(), count_.size());
@@ -204,18 +207,13 @@ void Film::load(const std::string& path, const std::string& key) {
     const std::string in = readWholeFile(path, payloadBytes(count_.size()) + kMaxHeader);
     size_t pos = 0;
     const std::string header = checkedHeader(in, path, pos);
-    if (in.size() != payloadBytes(count_.size()) + header.size())
-        fail(path, ": checkpoint is truncated or has the wrong size (", in.size(), " bytes; a checkpoint of this ", width_, "x",
-             height_, " film with this header has ", payloadBytes(count_.size()) + header.size(), ")");
-    checkChecksum(in, path);
+    checkSizeAndChecksum(in, path, width_, height_, header.size());
     int32_t w = 0, h = 0;
     take(in, pos, &w, 1);
     take(in, pos, &h, 1);
     if (w != width_ || h != height_) fail(path, ": checkpoint film size differs");
-    Film loaded(w, h);  // fill a copy: any error leaves this film as it was
-    loaded.takeBody(in, pos, path, header.size());
     if (firstLine(header) != key) fail(path, ": checkpoint was made with a different scene or settings");
-    *this = std::move(loaded);
+    takeBody(in, pos);  // every check passed: nothing below can fail, so an error leaves the film as it was
 }
 
 Film Film::read(const std::string& path, std::string* header) {
@@ -226,8 +224,8 @@ Film Film::read(const std::string& path, std::string* header) {
     take(in, pos, &w, 1);
     take(in, pos, &h, 1);
     Film film(w, h);  // validates the size
-    if (in.size() == payloadBytes(uint64_t(w) * uint64_t(h)) + header->size()) checkChecksum(in, path);
-    film.takeBody(in, pos, path, header->size());  // the size error if it differs
+    checkSizeAndChecksum(in, path, w, h, header->size());
+    film.takeBody(in, pos);
     return film;
 }
 

@@ -86,7 +86,7 @@ public:
     static Film read(const std::string& path, std::string* header);
 
 private:
-    void takeBody(const std::string& in, size_t pos, const std::string& path, size_t headerBytes);
+    void takeBody(const std::string& in, size_t pos);  // sums, squares, counts from a checked file
     int width_, height_;
     std::vector<FixedSum> sum_;
     std::vector<double> sumSq_;
