@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/io/image.h"
 #include "core/io/spectral_layout.h"
@@ -30,17 +28,6 @@ const char* kScene = R"(<scene version="3.0.0">
 
 std::string temp(const std::string& name) { return tempPath("iris_spectral_output", name); }
 
-/// Run a command and return its stdout (runCommand keeps only stderr).
-std::string stdoutOf(const std::string& cmd, int* exitCode) {
-    const std::string file = temp("stdout.txt");
-    const RunResult r = runCommand("(" + cmd + " > " + file + ")");
-    *exitCode = r.exitCode;
-    std::ifstream f(file);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
 }  // namespace
 
 TEST(SpectralOutput, WritesTheSpectralLayoutWithTheChosenBins) {
@@ -63,13 +50,12 @@ TEST(SpectralOutput, WritesTheSpectralLayoutWithTheChosenBins) {
     EXPECT_EQ(metadataValue(meta, "iris.spp"), "4");
 
     // compare: colour from the bins against the colour image, and one error line per band.
-    int rc = -1;
-    const std::string bands = stdoutOf(appPath("compare") + " " + spec + " " + spec + " --no-flip --per-channel", &rc);
-    ASSERT_EQ(rc, 0);
-    EXPECT_NE(bands.find("channel S0.555,000000nm"), std::string::npos) << bands;
-    const std::string colour = stdoutOf(appPath("compare") + " " + spec + " " + out + " --no-flip --json", &rc);
-    ASSERT_EQ(rc, 0);
-    EXPECT_NE(colour.find("\"channels\": 3"), std::string::npos) << colour;
+    const RunResult bands = runCommand(appPath("compare") + " " + spec + " " + spec + " --no-flip --per-channel");
+    ASSERT_EQ(bands.exitCode, 0) << bands.stderrText;
+    EXPECT_NE(bands.stdoutText.find("channel S0.555,000000nm"), std::string::npos) << bands.stdoutText;
+    const RunResult colour = runCommand(appPath("compare") + " " + spec + " " + out + " --no-flip --json");
+    ASSERT_EQ(colour.exitCode, 0) << colour.stderrText;
+    EXPECT_NE(colour.stdoutText.find("\"channels\": 3"), std::string::npos) << colour.stdoutText;
 }
 
 TEST(SpectralOutput, RgbModeResumeAndBadWidthsAreRejected) {

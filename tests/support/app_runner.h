@@ -1,5 +1,5 @@
 // Helpers for tests that run the built executables (render, compare, merge): paths, a shell
-// runner that captures stderr, and temporary files.
+// runner that captures stdout and stderr, and temporary files.
 #pragma once
 
 #include <cstdio>
@@ -28,21 +28,28 @@ inline std::string appPath(const std::string& app) { return buildDir() + "/" + a
 
 struct RunResult {
     int exitCode = -1;
-    std::string stderrText;
+    std::string stdoutText, stderrText;
 };
 
-/// Run a shell command line, capturing its stderr; stdout is discarded.
-inline RunResult runCommand(const std::string& cmd) {
-    const std::string errFile = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/iris_test_stderr_" +
-                                std::to_string(::getpid()) + ".txt";
-    const int status = std::system((cmd + " >/dev/null 2>" + errFile).c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream f(errFile);
+/// The whole content of a file ("" if it cannot be read), which is then removed.
+inline std::string takeFile(const std::string& path) {
+    std::ifstream f(path);
     std::stringstream ss;
     ss << f.rdbuf();
-    r.stderrText = ss.str();
-    std::remove(errFile.c_str());
+    std::remove(path.c_str());
+    return ss.str();
+}
+
+/// Run a shell command line, capturing its stdout and stderr.
+inline RunResult runCommand(const std::string& cmd) {
+    const std::string base = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/iris_test_" +
+                             std::to_string(::getpid());
+    const std::string outFile = base + "_stdout.txt", errFile = base + "_stderr.txt";
+    const int status = std::system((cmd + " >" + outFile + " 2>" + errFile).c_str());
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.stdoutText = takeFile(outFile);
+    r.stderrText = takeFile(errFile);
     return r;
 }
 
