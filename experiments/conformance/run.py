@@ -52,15 +52,24 @@ def render(render_exe: Path, scene: Path, mode: str, spp: int, seed: int, out: P
     """Render scene; returns (XYZ mean, XYZ variance of the mean, spp) or raises RuntimeError with
     render's error line."""
     image, var = out.with_suffix(".exr"), out.with_name(out.stem + "_var.exr")
+    # RGB mode: the film's own space (linear Rec.709), taken to XYZ below by the same matrix as
+    # Mitsuba's RGB reference, so that no difference between two renditions of the sRGB matrix
+    # (iris's OCIO config has the 4-digit IEC one) is mistaken for a bias at pixels of tiny variance.
+    space = "lin_rec709" if mode == "rgb" else "CIE-XYZ"
     cmd = [str(render_exe), str(scene), "-o", str(image), "--variance", str(var), "--no-png", "--quiet",
-           "--mode", mode, "--spp", str(spp), "--seed", str(seed), "--output-space", "CIE-XYZ"]
+           "--mode", mode, "--spp", str(spp), "--seed", str(seed), "--output-space", space]
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if proc.returncode != 0:
         lines = [l for l in proc.stderr.strip().splitlines() if l.strip()]
         raise RuntimeError((lines[-1] if lines else f"exit {proc.returncode}").removeprefix("render: error: "))
-    mean = _xyz(image)
+    mean = _xyz(image) if mode != "rgb" else mitsuba_refs.to_xyz(_rgb_channels(image))
     variance = _xyz(var)
     return mean, variance, int(read_exr_metadata(str(image)).get("iris.spp", spp))
+
+
+def _rgb_channels(path: Path) -> np.ndarray:
+    pixels, names, _ = read_exr(str(path))
+    return pixels[:, :, [names.index(c) for c in ("R", "G", "B")]].astype(np.float64)
 
 
 def _xyz(path: Path) -> np.ndarray:
@@ -102,10 +111,29 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
     r = welch.multiscale_test(mean, var, spp, ref_mean, ref_var, ref_n, SIGNIFICANCE)
     ratios = channel_ratios(mean, ref_mean)
     pixel_p = r["per_scale"][1]
+    if args.worst:
+        print_worst_pixels(name, mode, pixel_p, mean, var, ref_mean, ref_var, args.worst)
+        for k, p in r["per_scale"].items():
+            if k != 1:
+                y, x, c = np.unravel_index(np.argmin(p), p.shape)
+                print(f"  {name} {mode} worst {'whole-image' if k == 0 else f'{k}x{k} block'} test: "
+                      f"block x={x} y={y} {'XYZ'[c]} p {p[y, x, c]:.3g}")
     return {**row, "verdict": "pass" if r["passed"] else "fail", "p_min": r["p_min"], "threshold": r["threshold"],
             "scale": r["scale"], "tests": r["tests"], "spp": spp, "ref_spp": ref_n,
             "rejected_pixels": int(np.count_nonzero((pixel_p <= r["threshold"]).any(axis=2))),
             "ratio_X": ratios[0], "ratio_Y": ratios[1], "ratio_Z": ratios[2]}
+
+
+def print_worst_pixels(name, mode, pixel_p, mean, var, ref_mean, ref_var, count):
+    """Diagnosis (--worst N): the N single-pixel tests with the smallest p-values, with both
+    means, their ratio and the t statistic."""
+    order = np.argsort(pixel_p, axis=None)[:count]
+    for flat in order:
+        y, x, c = np.unravel_index(flat, pixel_p.shape)
+        m, r = mean[y, x, c], ref_mean[y, x, c]
+        t = (m - r) / np.sqrt(var[y, x, c] + ref_var[y, x, c]) if var[y, x, c] + ref_var[y, x, c] > 0 else float("inf")
+        print(f"  {name} {mode} pixel x={x} y={y} {'XYZ'[c]}: iris {m:.5g} mitsuba {r:.5g} "
+              f"ratio {m / r if r else float('nan'):.4f} t {t:.2f} p {pixel_p[y, x, c]:.3g}")
 
 
 def verdict_class(verdict: str) -> str:
@@ -159,6 +187,8 @@ def main(argv=None) -> int:
     ap.add_argument("--scene-dir", type=Path, default=mitsuba_refs.SCENE_DIR)
     ap.add_argument("--out", default=str(tools.REPO / "experiments" / "results" / "conformance"))
     ap.add_argument("--build-dir")
+    ap.add_argument("--worst", type=int, default=0, metavar="N",
+                    help="diagnosis: print the N pixel tests with the smallest p-values per render")
     args = ap.parse_args(argv)
     if not args.scene_dir.is_dir():
         print(f"conformance: {args.scene_dir} not found (../shared is not beside the repository); skipped")

@@ -141,94 +141,194 @@ TEST(Lights, PointAndDirectionalLightsAreAnalytic) {
     }
 }
 
-TEST(Lights, EnvironmentMapSamplingIsConsistent) {
-    // A small synthetic lat-long map with a bright spot.
+namespace {
+
+/// An environment map light from `img` (written to a temporary EXR) in a scene of format `version`.
+LightPtr envmapFromImage(const Image& img, const std::string& name, int version = 3) {
+    const std::string path = ::testing::TempDir() + name;
+    writeEXR(path, img);
+    Properties p("emitter", "envmap", SourceLocation{"<test>", 7});
+    p.setFormatVersion(version);
+    p.set("filename", std::string(path), SourceLocation{"<test>", 8});
+    LightPtr light = LightRegistry::instance().create(p);
+    std::remove(path.c_str());
+    return light;
+}
+
+vec3 directionOfUV(double u, double v) {
+    const double theta = kPi * v, phi = 2 * kPi * u;
+    return vec3(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+}
+
+/// The map's value at (u, v) written out independently of envmap_lattice.h: Mitsuba 3 (version
+/// ≥ 2) has column x at u = (x + ½)/W (periodic) and row y at v = y/(H − 1); Mitsuba 0.6 has
+/// texel centres (x + ½)/W, (y + ½)/H with the rows clamped at the poles. Bilinear in between.
+double referenceValue(const Image& img, int c, double u, double v, bool mitsuba3) {
+    const int w = img.width, h = img.height;
+    const double a = u * w - 0.5, b = mitsuba3 ? v * (h - 1) : v * h - 0.5;
+    const double x0 = std::floor(a), y0 = std::floor(b), fx = a - x0, fy = b - y0;
+    auto texel = [&](double x, double y) {
+        const int xi = ((int(x) % w) + w) % w, yi = std::clamp(int(y), 0, h - 1);
+        return double(img.at(xi, yi, c));
+    };
+    return (1 - fy) * ((1 - fx) * texel(x0, y0) + fx * texel(x0 + 1, y0)) +
+           fy * ((1 - fx) * texel(x0, y0 + 1) + fx * texel(x0 + 1, y0 + 1));
+}
+
+/// ∫ L dω of channel c for the reference interpolation: in u the periodic interpolant averages to
+/// the row mean, so ∫ = 2π² ∫₀¹ rowMean(v) sin(πv) dv, integrated by the midpoint rule (10⁵ steps).
+double referenceIntegral(const Image& img, int c, bool mitsuba3) {
+    const int steps = 100000;
+    double sum = 0;
+    for (int i = 0; i < steps; ++i) {
+        const double v = (i + 0.5) / steps;
+        double row = 0;
+        for (int x = 0; x < img.width; ++x) row += referenceValue(img, c, (x + 0.5) / img.width, v, mitsuba3);
+        sum += row / img.width * std::sin(kPi * v);
+    }
+    return 2 * kPi * kPi * sum / steps;
+}
+
+Image brightSpotMap() {
     const int w = 32, h = 16;
     Image img(w, h, 3);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) img.at(x, y, c) = (x == 5 && y == 4) ? 50.0f : 0.2f + 0.1f * c + 0.01f * x;
-    const std::string path = ::testing::TempDir() + "iris_env_test.exr";
-    writeEXR(path, img);
-    Properties p("emitter", "envmap", SourceLocation{"<test>", 0});
-    p.set("filename", std::string(path), SourceLocation{});
-    const LightPtr env = LightRegistry::instance().create(p);
-    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
+    return img;
+}
 
-    // Reference ∫ L dω by quadrature over texels (each texel has solid angle Δφ (cos θ0 − cos θ1)).
-    double ref = 0;
-    for (int y = 0; y < h; ++y) {
-        const double dOmega = (2 * kPi / w) * (std::cos(kPi * y / h) - std::cos(kPi * (y + 1) / h));
-        for (int x = 0; x < w; ++x) ref += img.at(x, y, 1) * dOmega;
+}  // namespace
+
+TEST(Lights, EnvironmentMapInterpolatesBilinearlyWhereTheVersionPlacesTexels) {
+    // Mitsuba interpolates the map bilinearly (nearest-texel lookup was 2–7 % off Mitsuba 3's
+    // references at the background of its test scenes); Mitsuba 0.6 and 3 place the texels
+    // differently. Le at random directions equals the independent formula, and the two versions
+    // differ from each other (the test can tell them apart).
+    const Image img = brightSpotMap();
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
+    for (int version : {0, 2, 3}) {
+        const bool m3 = version >= 2;
+        const LightPtr env = envmapFromImage(img, "iris_env_bilinear.exr", version);
+        Sampler rng(11 + version);
+        double maxOther = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const double u = rng.get1D(), v = 0.002 + 0.996 * rng.get1D();
+            const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), directionOfUV(u, v), wl);
+            for (int c = 0; c < 3; ++c) {
+                const double ref = referenceValue(img, c, u, v, m3);
+                ASSERT_NEAR(L[c], ref, 2e-4 * ref + 1e-5) << "version " << version << " u " << u << " v " << v;
+                maxOther = std::max(maxOther, std::abs(referenceValue(img, c, u, v, !m3) - ref));
+            }
+        }
+        EXPECT_GT(maxOther, 1.0) << "the 0.6 and 3 placements must differ near the bright texel";
     }
-    Sampler sampler(42);
-    const int n = 200000;
-    double s = 0, s2 = 0;
-    int mismatches = 0;
-    for (int i = 0; i < n; ++i) {
-        const auto ls = env->sampleLi(vec3(0.0f), sampler.get2D(), wl);
-        ASSERT_TRUE(ls.has_value());
-        // pdfLi agrees with the sampling density, and Le with the sampled radiance, except for
-        // directions within float rounding of a texel edge (mapped back to the neighbour texel).
-        const bool pdfOk = std::abs(env->pdfLi(vec3(0.0f), ls->wi, nullptr) - ls->pdf) <= 1e-3f * ls->pdf;
-        const bool leOk = std::abs(env->Le(vec3(0.0f), vec3(0.0f), ls->wi, wl)[1] - ls->L[1]) <= 1e-4f * ls->L[1] + 1e-6f;
-        mismatches += !(pdfOk && leOk);
-        const double v = ls->L[1] / ls->pdf;
-        s += v;
-        s2 += v * v;
+}
+
+TEST(Lights, EnvironmentMapSamplingIsConsistent) {
+    // sampleLi's density equals pdfLi and its radiance Le (except within float rounding of a cell
+    // edge), and L/pdf estimates ∫ L dω of the interpolated map without bias, for both placements.
+    const Image img = brightSpotMap();
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
+    for (int version : {0, 3}) {
+        const LightPtr env = envmapFromImage(img, "iris_env_test.exr", version);
+        const double ref = referenceIntegral(img, 1, version >= 2);
+        Sampler sampler(42);
+        const int n = 200000;
+        double s = 0, s2 = 0;
+        int mismatches = 0;
+        for (int i = 0; i < n; ++i) {
+            const auto ls = env->sampleLi(vec3(0.0f), sampler.get2D(), wl);
+            ASSERT_TRUE(ls.has_value());
+            const bool pdfOk = std::abs(env->pdfLi(vec3(0.0f), ls->wi, nullptr) - ls->pdf) <= 1e-3f * ls->pdf;
+            const bool leOk = std::abs(env->Le(vec3(0.0f), vec3(0.0f), ls->wi, wl)[1] - ls->L[1]) <= 1e-4f * ls->L[1] + 1e-6f;
+            mismatches += !(pdfOk && leOk);
+            const double v = ls->L[1] / ls->pdf;
+            s += v;
+            s2 += v * v;
+        }
+        EXPECT_LE(mismatches, n / 1000) << "version " << version;
+        const double mean = s / n, se = std::sqrt((s2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, ref, 5 * se + 1e-5 * ref) << "version " << version;
     }
-    EXPECT_LE(mismatches, n / 1000);  // observed: ~2.6e-4 of the samples (float direction round trip)
-    const double mean = s / n, se = std::sqrt((s2 / n - mean * mean) / n);
-    EXPECT_NEAR(mean, ref, 5 * se + 1e-6 * ref);
-    std::remove(path.c_str());
+}
+
+TEST(Lights, EnvironmentMapTooSmallForMitsuba3IsRejected) {
+    // Mitsuba 3 needs at least 2×3 texels (its first and last rows sit on the poles); a version 3
+    // scene with a 4×2 map is refused with the file's location, the same map in 0.6 loads.
+    Image img(4, 2, 3);
+    for (float& x : img.pixels) x = 1.0f;
+    EXPECT_NO_THROW(envmapFromImage(img, "iris_env_small.exr", 0));
+    try {
+        envmapFromImage(img, "iris_env_small.exr", 3);
+        FAIL() << "a 4x2 map in a version 3 scene must be rejected";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("<test>:8"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("2x3"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Lights, EnvironmentMapSpectralLookupMatchesCornerSpectra) {
-    // Spectral mode: a texel's spectrum is m · Σ_corners w_c · S_c(λ) with S_c the Illuminant
-    // RGBSpectrum of grid corner c (envmap_light.cpp). The lookup sums the corners' shapes and
-    // applies the common D65 factor once; compare with the sum of the corners' own eval().
-    const int w = 8, h = 4;
+    // Spectral mode: texel k has spectrum m_k · S_k(λ), S_k = Σ_corners w_c · S_c(λ) with S_c the
+    // Illuminant RGBSpectrum of grid corner c of its chromaticity (envmap_light.cpp). Between
+    // texels, Mitsuba 0.6 (version 0) interpolates the spectra, Σ w_k m_k S_k; Mitsuba 3 (version
+    // 3) interpolates the normalised spectra and the scales separately, (Σ w_k m_k)(Σ w_k S_k)
+    // (its eval_spectrum). The lookup sums the corners' shapes and applies the common D65 factor
+    // once; compare with the sum of the corners' own eval().
+    const int w = 8, h = 5;
     Image img(w, h, 3);
     const vec3 colours[4] = {vec3(0.75f, 0.25f, 0.125f), vec3(0.5f, 0.5f, 0.5f), vec3(0.0625f, 0.8125f, 2.5f),
                              vec3(0.3125f, 0.0f, 0.0f)};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) img.at(x, y, c) = colours[(x + y) % 4][c] * float(1 + x);
-    const std::string path = ::testing::TempDir() + "iris_env_spectral_test.exr";
-    writeEXR(path, img);
-    Properties p("emitter", "envmap", SourceLocation{"<test>", 0});
-    p.set("filename", std::string(path), SourceLocation{});
-    const LightPtr env = LightRegistry::instance().create(p);
-    const Image stored = readImage(path);
     constexpr int K = 17;
-    for (int n : {1, 4, 7, 32}) {
-        const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, n);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                // Texel centre direction (Mitsuba convention, identity to_world).
-                const float theta = kPi * (y + 0.5f) / h, phi = 2 * kPi * (x + 0.5f) / w;
-                const vec3 dir(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
-                const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), dir, wl);
-                const vec3 c(stored.at(x, y, 0), stored.at(x, y, 1), stored.at(x, y, 2));
-                const float m = std::max({c.x, c.y, c.z});
-                const vec3 g = c / m * float(K - 1);
-                const int x0 = std::min(int(g.x), K - 2), y0 = std::min(int(g.y), K - 2), z0 = std::min(int(g.z), K - 2);
-                const vec3 f = g - vec3(x0, y0, z0);
-                for (int i = 0; i < n; ++i) {
-                    double ref = 0;
-                    for (int corner = 0; corner < 8; ++corner) {
-                        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
-                        const float wc = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
-                        if (wc <= 0) continue;
-                        const SpectrumPtr s = makeRGBSpectrum(vec3(x0 + dx, y0 + dy, z0 + dz) / float(K - 1), SpectrumKind::Illuminant);
-                        ref += double(wc) * s->eval(wl.lambda(i));
+    auto scaleOf = [&](int x, int y) { return double(std::max({img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)})); };
+    auto shapeOf = [&](int x, int y, float lambda) {
+        const vec3 c(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2));
+        const vec3 g = c / float(scaleOf(x, y)) * float(K - 1);
+        const int x0 = std::min(int(g.x), K - 2), y0 = std::min(int(g.y), K - 2), z0 = std::min(int(g.z), K - 2);
+        const vec3 f = g - vec3(x0, y0, z0);
+        double ref = 0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
+            const float wc = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
+            if (wc <= 0) continue;
+            const SpectrumPtr s = makeRGBSpectrum(vec3(x0 + dx, y0 + dy, z0 + dz) / float(K - 1), SpectrumKind::Illuminant);
+            ref += double(wc) * s->eval(lambda);
+        }
+        return ref;
+    };
+    for (int version : {0, 3}) {
+        const LightPtr env = envmapFromImage(img, "iris_env_spectral_test.exr", version);
+        for (int n : {1, 4, 7, 32}) {
+            const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, n);
+            for (int y = 0; y + 1 < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    // A quarter of the way from column x to x+1 (at u = (x + ½)/W) and half-way
+                    // from row y to y+1 (v = y/(H − 1) in Mitsuba 3, (y + ½)/H in 0.6).
+                    const double fx = 0.25, fy = 0.5;
+                    const double v = version >= 2 ? (y + fy) / (h - 1) : (y + 0.5 + fy) / h;
+                    const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), directionOfUV((x + 0.5 + fx) / w, v), wl);
+                    const int xs[4] = {x, (x + 1) % w, x, (x + 1) % w}, ys[4] = {y, y, y + 1, y + 1};
+                    const double wk[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+                    for (int i = 0; i < n; ++i) {
+                        const float lambda = wl.lambda(i);
+                        double mixed = 0, shape = 0, scale = 0, largest = 0;
+                        for (int k = 0; k < 4; ++k) {
+                            const double sk = shapeOf(xs[k], ys[k], lambda), mk = scaleOf(xs[k], ys[k]);
+                            mixed += wk[k] * mk * sk;
+                            shape += wk[k] * sk;
+                            scale += wk[k] * mk;
+                            largest = std::max(largest, mk * sk);
+                        }
+                        const double ref = version >= 2 ? shape * scale : mixed;
+                        EXPECT_NEAR(L[i], ref, 2e-6 * ref + 1e-5 * largest + 1e-7)
+                            << "version " << version << " cell " << x << "," << y << " lambda " << lambda;
                     }
-                    ref *= m;
-                    EXPECT_NEAR(L[i], ref, 2e-6 * ref + 1e-7) << "texel " << x << "," << y << " lambda " << wl.lambda(i);
                 }
-            }
+        }
     }
-    std::remove(path.c_str());
 }
 
 namespace {
