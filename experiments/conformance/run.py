@@ -108,6 +108,7 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
     if ref_mean.shape != mean.shape:
         return {**row, "verdict": f"fail: image size {mean.shape[1]}x{mean.shape[0]}, reference {ref_mean.shape[1]}x{ref_mean.shape[0]}",
                 "spp": spp}
+    var = welch.floor_by_reference(var, spp, ref_var, ref_n)   # rare-event pixels (welch.py)
     r = welch.multiscale_test(mean, var, spp, ref_mean, ref_var, ref_n, SIGNIFICANCE)
     ratios = channel_ratios(mean, ref_mean)
     pixel_p = r["per_scale"][1]

@@ -61,6 +61,31 @@ class WelchTest(unittest.TestCase):
         self.assertFalse(welch.multiscale_test(one, z, 10, 1.001 * one, z, 10)["passed"])
 
 
+    def test_rare_events_need_the_reference_variance_floor(self):
+        # A pixel whose mean is carried by a rare event (probability 0.003 of a sample seeing a
+        # bright edge, value 1, over a background of 0.1 with tiny noise): with 868 samples many
+        # pixels see no event and report almost no variance, so plain Welch rejects the null at
+        # Šidák's level; bounded by the reference's per-sample variance it does not, and a 1 %
+        # bias of the background is still found.
+        rng = np.random.default_rng(5)
+        shape, n1, n2, q = (24, 24, 1), 868, 32000, 0.003
+        def pixel_stats(n, scale=1.0):
+            events = rng.binomial(n, q, size=shape)
+            noise = rng.normal(0.0, 1e-4, size=shape + (2,))
+            # Exact moments of n samples: events of value 1, the rest 0.1·scale (+ small noise).
+            mean = (events * 1.0 + (n - events) * 0.1 * scale) / n + noise[..., 0] / np.sqrt(n)
+            m2 = (events * 1.0 + (n - events) * (0.1 * scale) ** 2) / n + 1e-8
+            return mean, np.maximum(m2 - mean ** 2, 0) * n / (n - 1) / n
+        m1, v1 = pixel_stats(n1)
+        m2, v2 = pixel_stats(n2)
+        plain = welch.multiscale_test(m1, v1, n1, m2, v2, n2)
+        self.assertFalse(plain["passed"])
+        floored = welch.multiscale_test(m1, welch.floor_by_reference(v1, n1, v2, n2), n1, m2, v2, n2)
+        self.assertTrue(floored["passed"], floored["p_min"])
+        mb, vb = pixel_stats(n1, 1.01)
+        self.assertFalse(welch.multiscale_test(mb, welch.floor_by_reference(vb, n1, v2, n2), n1, m2, v2, n2)["passed"])
+
+
 class Perturbation(unittest.TestCase):
     def test_default_fov_of_mitsuba(self):
         # 50 mm on 36x24 mm: 46.79° along the diagonal, 34.02° across a square image.

@@ -141,6 +141,17 @@ def block_welch_p(m1, v1, n1, m2, v2, n2, k):
     return student_t_two_sided_p((bm1 - bm2) / np.sqrt(v), dof)
 
 
+def floor_by_reference(v1, n1, v2, n2):
+    """The test image's variance of the mean, bounded below by the reference's per-sample variance
+    over n1: max(v1, v2·n2/n1). Welch's test assumes each sample variance is a fair estimate; at a
+    pixel where a rare event carries the mean (a silhouette covering 0.3 % of the pixel, a small
+    highlight) a sample of a few hundred often has seen none and reports almost no variance, and
+    the pixel is rejected though nothing is biased. The reference's much larger sample estimates
+    that variance well; under the null hypothesis both renderers estimate the same integral, and
+    a lower bound from it can only make the test more conservative, never reject more."""
+    return np.maximum(v1, v2 * np.asarray(n2, float) / np.asarray(n1, float))
+
+
 def sidak_threshold(alpha, tests):
     """Per-test level α_1 = 1 − (1 − α)^(1/m), computed without cancellation."""
     return -np.expm1(np.log1p(-alpha) / tests)
