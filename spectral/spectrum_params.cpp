@@ -1,5 +1,6 @@
 #include "spectral/spectrum_params.h"
 
+#include "spectral/mitsuba_rgb.h"
 #include "spectral/spectrum_factory.h"
 
 namespace iris {
@@ -34,7 +35,15 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
     if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
     if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
     if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
-    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) return spectrumFromValue(*s, kind, e.loc);
+    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) {
+        SpectrumPtr spec = spectrumFromValue(*s, kind, e.loc);
+        // A tabulated reflectance or emission (λ:value pairs, a .spd file) renders in RGB mode with
+        // the RGB value Mitsuba's RGB variant of the scene's version computes (spectral/mitsuba_rgb.h).
+        // Unbounded tables keep the channel-wavelength rule (spectral/spectrum.h) except where a
+        // plugin asks for Mitsuba's (conductor eta/k, spectral/ior_params.cpp).
+        if (kind != SpectrumKind::Unbounded) spec = withMitsubaRGBModeValue(spec, MitsubaTableSource::SceneValue, p.formatVersion());
+        return spec;
+    }
     p.typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
 }
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def) {
