@@ -143,7 +143,7 @@ vec3 mitsubaRGBModeValue(const std::vector<float>& lambdas, const std::vector<fl
 
 namespace {
 
-/// Spectral mode: the table; RGB mode: the triple, for every kind.
+/// Spectral mode: the wrapped spectrum (a table, or a constant); RGB mode: the triple, for every kind.
 class MitsubaTableSpectrum final : public Spectrum {
 public:
     MitsubaTableSpectrum(SpectrumPtr table, const vec3& rgb)
@@ -166,6 +166,11 @@ private:
 };
 
 }  // namespace
+
+SpectrumPtr mitsuba3UniformEmission(float v) {
+    const vec3 rgb = vec3(double(v) * mitsubaXyzToLinearRGB(dvec3(1.0)));
+    return std::make_shared<MitsubaTableSpectrum>(std::make_shared<ConstantSpectrum>(v, SpectrumKind::Illuminant), rgb);
+}
 
 SpectrumPtr withMitsubaRGBModeValue(SpectrumPtr table, MitsubaTableSource source, int formatVersion) {
     const auto* pl = dynamic_cast<const PiecewiseLinearSpectrum*>(table.get());

@@ -49,6 +49,13 @@ enum class MitsubaTableSource { SceneValue, ConductorPreset };
 vec3 mitsubaRGBModeValue(const std::vector<float>& lambdas, const std::vector<float>& values, SpectrumKind kind,
                          MitsubaTableSource source, int formatVersion);
 
+/// Mitsuba 3's single-valued `<spectrum value="v"/>` of an emitter (src/core/properties.cpp
+/// get_texture_impl, older src/core/xml.cpp create_texture_from_spectrum): the flat (equal-energy)
+/// spectrum v in spectral mode, its sRGB colour v · M (1, 1, 1) = v · (1.2048, 0.9484, 0.9087) in
+/// RGB mode ("this purple-ish color", so that the two variants agree). Mitsuba 0.6 and a `<float>`
+/// give v × D65 instead (spectral/spectrum_params.h).
+SpectrumPtr mitsuba3UniformEmission(float v);
+
 /// A tabulated spectrum as a Mitsuba plugin reads it: spectral mode evaluates `table` (a
 /// PiecewiseLinearSpectrum), RGB mode returns mitsubaRGBModeValue for every kind (also Unbounded,
 /// which RGB mode otherwise evaluates at the channel wavelengths). Another spectrum is returned as

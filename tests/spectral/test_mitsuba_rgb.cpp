@@ -211,3 +211,33 @@ TEST(MitsubaRGB, Mitsuba3WhiteIsNearlyOne) {
     EXPECT_NEAR(e.y, 0.9482f, 2e-4f);
     EXPECT_NEAR(e.z, 0.9093f, 2e-4f);
 }
+
+TEST(MitsubaRGB, SingleValuedEmissionFollowsTheVersion) {
+    // <spectrum name="radiance" value="0.5"/>: Mitsuba 3 makes it the flat spectrum 0.5 (spectral)
+    // and its sRGB colour 0.5 · M (1, 1, 1) (RGB); Mitsuba 0.6 (intent "illuminant") and a <float>
+    // give 0.5 × D65 with Y = 1, white (0.5, 0.5, 0.5) in RGB mode.
+    SpectrumValue half;
+    half.constant = 0.5f;
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.23f, 8);
+    const SpectrumPtr d65 = spectrumFromNumber(0.5f, SpectrumKind::Illuminant);
+    for (int version : {0, 2, 3}) {
+        Properties emitter = props("emitter", "area", version);
+        emitter.set("radiance", half, SourceLocation{"scene.xml", 5});
+        emitter.set("number", 0.5f, SourceLocation{"scene.xml", 6});
+        const SpectrumPtr s = getSpectrum(emitter, "radiance", SpectrumKind::Illuminant);
+        const SpectrumPtr f = getSpectrum(emitter, "number", SpectrumKind::Illuminant);
+        const SampledSpectrum spectral = s->sample(wl), fromFloat = f->sample(wl), rgb = s->sample(kRGB);
+        for (int i = 0; i < wl.size(); ++i) {
+            EXPECT_EQ(fromFloat[i], d65->eval(wl.lambda(i)));  // a number: × D65 in every version
+            EXPECT_EQ(spectral[i], version >= 2 ? 0.5f : d65->eval(wl.lambda(i))) << "version " << version;
+        }
+        const vec3 want = version >= 2 ? vec3(0.5 * mitsubaMatrix(dvec3(1.0))) : vec3(0.5f);
+        expectNear(rgb, want, 1e-3f, "rgb, version " + std::to_string(version));
+        if (version >= 2) EXPECT_NEAR(rgb[0], 0.5f * 1.2048f, 1e-4f);
+        // A reflectance's single value is the constant in every version.
+        Properties bsdf = props("bsdf", "diffuse", version);
+        bsdf.set("reflectance", half, SourceLocation{"scene.xml", 7});
+        const SampledSpectrum rho = getSpectrum(bsdf, "reflectance", SpectrumKind::Reflectance)->sample(wl);
+        for (int i = 0; i < wl.size(); ++i) EXPECT_EQ(rho[i], 0.5f);
+    }
+}
