@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/source_tree.h"
 #include "spectral/ior_params.h"
+#include "spectral/mitsuba_rgb.h"
 #include "spectral/spectrum_factory.h"
 #include "spectral/spectrum_params.h"
 
@@ -56,8 +57,11 @@ ConductorIOR readConductor(const Properties& p) {
         const ConductorSpectra preset = withLocation(p.locationOf("material"), [&] { return loadConductorPreset(name); });
         s.mirror = preset.mirror();
         if (!s.mirror) {
-            s.eta = IOR::tabulated(preset.eta);
-            s.k = IOR::tabulated(preset.k);
+            // RGB mode: the RGB value Mitsuba's RGB variant of the scene's version computes from
+            // the tables (spectral/mitsuba_rgb.h); spectral mode: the tables.
+            const int version = p.formatVersion();
+            s.eta = IOR::tabulated(withMitsubaRGBModeValue(preset.eta, MitsubaTableSource::ConductorPreset, version));
+            s.k = IOR::tabulated(withMitsubaRGBModeValue(preset.k, MitsubaTableSource::ConductorPreset, version));
         }
     }
     s.extIOR = readConstantIOR(p, "ext_ior", 1.0f);

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "spectral/ior_presets.h"
+#include "spectral/mitsuba_rgb.h"
 #include "spectral/spectrum_params.h"
 
 namespace iris {
@@ -66,6 +67,10 @@ IOR fromValue(const Properties& p, const IorParam& param, bool* perChannel) {
     if (std::holds_alternative<SpectrumValue>(e.value) || std::holds_alternative<RGBValue>(e.value)) {
         SpectrumPtr s = getSpectrum(p, param.name, SpectrumKind::Unbounded);
         if (const auto* c = dynamic_cast<const ConstantSpectrum*>(s.get())) return IOR::constant(c->value());
+        // Mitsuba's conductor eta/k given as a table: RGB mode renders with the RGB value Mitsuba's
+        // RGB variant computes (spectral/mitsuba_rgb.h), not the table at the channel wavelengths.
+        if (param.quantity == IorQuantity::ConductorOptics)
+            s = withMitsubaRGBModeValue(std::move(s), MitsubaTableSource::SceneValue, p.formatVersion());
         return IOR::tabulated(std::move(s));
     }
     p.typeError(param.name, index ? "index of refraction (float, IOR preset name, rgb or spectrum)"

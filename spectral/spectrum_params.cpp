@@ -1,5 +1,6 @@
 #include "spectral/spectrum_params.h"
 
+#include "spectral/mitsuba_rgb.h"
 #include "spectral/spectrum_factory.h"
 
 namespace iris {
@@ -8,7 +9,7 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     // File errors already name their file; withLocation adds where the scene asked for it.
     return withLocation(loc, [&]() -> SpectrumPtr {
         switch (v.type) {
-            case SpectrumValue::Type::Constant:  // <spectrum value="0.3"/> is a number, like <float>
+            case SpectrumValue::Type::Constant:  // <spectrum value="0.3"/>: a number, like <float> (0.x rule)
                 return spectrumFromNumber(v.constant, kind);
             case SpectrumValue::Type::Pairs:
                 return makePiecewiseLinearSpectrum(v.lambdas, v.values, kind);
@@ -21,9 +22,10 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     });
 }
 
-/// A plain number as a spectrum, given as <float> or as a single-valued <spectrum>. Emitters
-/// multiply it by D65 with Y = 1 (as Mitsuba 0.6 and 3 do, issue 14 item 7), so it renders the
-/// same white, (v, v, v), in spectral and RGB mode.
+/// A plain number as a spectrum, given as <float> (or as a single-valued <spectrum> in a version 0.x
+/// scene). Emitters multiply it by D65 with Y = 1 (Mitsuba 3 for a number: `d65` / `srgb` (v, v, v);
+/// Mitsuba 0.6 for both forms, intent "illuminant"; issue 14 item 7), so it renders the same white,
+/// (v, v, v), in spectral and RGB mode.
 SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind) {
     if (kind == SpectrumKind::Illuminant) return makeRGBSpectrum(vec3(v), kind);
     return std::make_shared<ConstantSpectrum>(v, kind);
@@ -34,7 +36,19 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
     if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
     if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
     if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
-    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) return spectrumFromValue(*s, kind, e.loc);
+    if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) {
+        // An emitter's single-valued <spectrum> in a version 2/3 scene: Mitsuba 3's flat spectrum
+        // (RGB mode: its sRGB colour); version 0.x: value × D65 like a number (spectrumFromNumber).
+        if (s->type == SpectrumValue::Type::Constant && kind == SpectrumKind::Illuminant && p.formatVersion() >= 2)
+            return mitsuba3UniformEmission(s->constant);
+        SpectrumPtr spec = spectrumFromValue(*s, kind, e.loc);
+        // A tabulated reflectance or emission (λ:value pairs, a .spd file) renders in RGB mode with
+        // the RGB value Mitsuba's RGB variant of the scene's version computes (spectral/mitsuba_rgb.h).
+        // Unbounded tables keep the channel-wavelength rule (spectral/spectrum.h) except where a
+        // plugin asks for Mitsuba's (conductor eta/k, spectral/ior_params.cpp).
+        if (kind != SpectrumKind::Unbounded) spec = withMitsubaRGBModeValue(spec, MitsubaTableSource::SceneValue, p.formatVersion());
+        return spec;
+    }
     p.typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
 }
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def) {

@@ -13,13 +13,17 @@ namespace iris {
 
 /// Spectrum from a float, rgb, spectrum or blackbody value; a located error when missing or of
 /// another type. A plain number given to an emitter (Illuminant kind) is that multiple of D65 with
-/// Y = 1, as in Mitsuba 3.
+/// Y = 1, as in Mitsuba 3. A single-valued <spectrum> of an emitter follows the scene's version:
+/// Mitsuba 3's flat spectrum for 2.x/3.x (mitsuba3UniformEmission, spectral/mitsuba_rgb.h),
+/// value × D65 like a number for 0.x (Mitsuba 0.6, intent "illuminant").
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind);
 /// As above, `def` (a number, read as above) when absent.
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def);
 /// A plain number as a spectrum of the given kind (the rule of getSpectrum for numbers).
 SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind);
-/// Build a spectrum of the given kind from a <spectrum>/<blackbody> value.
+/// Build a spectrum of the given kind from a <spectrum>/<blackbody> value, with the rules of a
+/// version 0.x scene for a single value (a number, see spectrumFromNumber) and the RGB-mode value
+/// of spectral/spectrum.h for tables (getSpectrum applies the version's rules).
 SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
 
 }  // namespace iris

@@ -16,9 +16,11 @@
 #include "spectral/ior_presets.h"
 #include "spectral/spectrum_factory.h"
 #include "tests/support/error_of.h"
+#include "tests/support/spectrum_pairs.h"
 
 using namespace iris;
 using iris::test::errorOf;
+using iris::test::spectrumPairs;
 
 namespace {
 
@@ -29,13 +31,6 @@ Properties props(std::initializer_list<std::pair<std::string, PropertyValue>> va
     return p;
 }
 
-SpectrumValue pairs(std::vector<float> lambdas, std::vector<float> values) {
-    SpectrumValue v;
-    v.type = SpectrumValue::Type::Pairs;
-    v.lambdas = std::move(lambdas);
-    v.values = std::move(values);
-    return v;
-}
 
 }  // namespace
 
@@ -145,7 +140,7 @@ TEST(IorParams, EveryFormOfAnIndex) {
     EXPECT_EQ(rgb.kind(), IOR::Kind::PerChannel);
     EXPECT_EQ(rgb.eval(500.0f), 1.5f);
     EXPECT_EQ(readIOR(props({{"eta", VectorValue{vec3(1.4f, 1.5f, 1.6f)}}}), "eta", def).eval(525.0f), 1.5f);
-    EXPECT_EQ(readIOR(props({{"int_ior", pairs({400, 700}, {1.6f, 1.5f})}}), "int_ior", def).kind(), IOR::Kind::Tabulated);
+    EXPECT_EQ(readIOR(props({{"int_ior", spectrumPairs({400, 700}, {1.6f, 1.5f})}}), "int_ior", def).kind(), IOR::Kind::Tabulated);
     SpectrumValue c;
     c.constant = 1.45f;
     EXPECT_EQ(readIOR(props({{"int_ior", c}}), "int_ior", def).kind(), IOR::Kind::Constant);
@@ -178,7 +173,7 @@ TEST(IorParams, InvalidValuesAreLocatedErrors) {
     }
     // A triple with one negative channel, a spectrum dipping below 0, a Sellmeier pole at 500 nm.
     EXPECT_THROW(readIOR(props({{"film_ior", RGBValue{vec3(1.5f, -1.0f, 1.6f)}}}), "film_ior", def), Error);
-    EXPECT_THROW(readIOR(props({{"film_ior", pairs({400, 700}, {-0.1f, 1.5f})}}), "film_ior", def), Error);
+    EXPECT_THROW(readIOR(props({{"film_ior", spectrumPairs({400, 700}, {-0.1f, 1.5f})}}), "film_ior", def), Error);
     EXPECT_THROW(readIOR(props({{"int_sellmeier_b", VectorValue{vec3(1, 0, 0)}}, {"int_sellmeier_c", VectorValue{vec3(0.25f, 0, 0)}}}),
                          "int_ior", def),
                  Error);

@@ -124,8 +124,10 @@ TEST(Spectra, TabulatedReflectanceAndIlluminantAreZeroOutsideTheirRange) {
 }
 
 TEST(Spectra, SingleValuedSpectrumOfAnEmitterIsD65LikeAFloat) {
-    // <spectrum name="radiance" value="0.3"/> is 0.3 x D65 (Y = 1) in Mitsuba 0.6 and 3, like
-    // <float> (issue 14, item 7): white, not the pink of a flat (equal-energy) spectrum.
+    // <spectrum name="radiance" value="0.3"/> is 0.3 x D65 (Y = 1) in Mitsuba 0.6, like <float>
+    // (issue 14, item 7): white, not the pink of a flat (equal-energy) spectrum. spectrumFromValue
+    // has no scene version and reads it so; Mitsuba 3's flat spectrum for version 2/3 scenes is
+    // getSpectrum's (MitsubaRGB.SingleValuedEmissionFollowsTheVersion).
     SpectrumValue v;
     v.constant = 0.3f;
     const SpectrumPtr fromSpectrum = spectrumFromValue(v, SpectrumKind::Illuminant, SourceLocation{});
