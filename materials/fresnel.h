@@ -96,16 +96,6 @@ inline float fresnelSchlick(float cosTheta, float f0) {
     return f0 + (1.0f - f0) * m2 * m2 * m;
 }
 
-/// Diffuse Fresnel reflectance Fdr(η) = 2∫₀¹ F(μ, η) μ dμ by the polynomial fits Mitsuba 3 uses
-/// (fresnel_diffuse_reflectance; Mitsuba 0.6 integrates numerically): η < 1 Egan & Hilgeman 1973,
-/// Fdr ≈ −1.4399 η² + 0.7099 η + 0.6681 + 0.0636/η (0.1 % for 1/η ≤ 1.5); η ≥ 1 d'Eon & Irving
-/// 2011, a quintic in 1/η (0.1 % for η ≤ 2).
-inline float fresnelDiffuseReflectanceFit(float eta) {
-    if (eta < 1.0f) return -1.4399f * eta * eta + 0.7099f * eta + 0.6681f + 0.0636f / eta;
-    const float x = 1.0f / eta;
-    return 0.919317f + x * (-3.4793f + x * (6.75335f + x * (-7.80989f + x * (4.98554f + x * -1.36881f))));
-}
-
 /// Normal-incidence reflectance of a dielectric with relative index eta: ((η−1)/(η+1))².
 inline float schlickF0FromEta(float eta) { return sqr((eta - 1.0f) / (eta + 1.0f)); }
 

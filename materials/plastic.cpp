@@ -2,8 +2,7 @@
 // limit of roughplastic (thesis 000 §2.5 with a smooth interface); needs no tables.
 //   specular: delta reflection with exact Fresnel F(μo, η), coefficient ks
 //   diffuse:  ρ' (1 − F(μi)) (1 − F(μo)) / (π η²),  ρ' = ρ/(1 − Fdr) or ρ/(1 − ρ Fdr) (nonlinear)
-//   Fdr = 1 − (1/η²) 2∫₀¹ (1 − F(μ, η)) μ dμ (internal diffuse reflectance, by reciprocity;
-//         version 0.x scenes, Mitsuba 0.6), or Mitsuba 3's polynomial fit of it (version 2.x/3.x).
+//   Fdr = 1 − (1/η²) 2∫₀¹ (1 − F(μ, η)) μ dμ (internal diffuse reflectance, by reciprocity).
 //
 // Parameters: int_ior (1.49), ext_ior (1.000277) (floats or preset names), diffuse_reflectance (0.5),
 // specular_reflectance (1.0), nonlinear (false).
@@ -76,13 +75,8 @@ public:
         // Mitsuba 3's defaults "polypropylene" and "air"; a float or a preset name (spectral/ior_params.h).
         const float intIor = readConstantIOR(p, "int_ior", 1.49f), extIor = readConstantIOR(p, "ext_ior", 1.000277f);
         eta_ = intIor / extIor;
-        // Fdr = 1 − Td with Td = (1/η²) 2∫(1 − F)μ dμ (α = 0 path of the integrator: no tables), as
-        // Mitsuba 0.6's numerical fresnelDiffuseReflectance(1/η) (version 0.x scenes); Mitsuba 3
-        // (version 2.x/3.x) takes the fit fresnel_diffuse_reflectance(1/η) (src/bsdfs/plastic.cpp).
-        if (p.formatVersion() >= 2)
-            fdr_ = fresnelDiffuseReflectanceFit(1.0f / eta_);
-        else
-            fdr_ = float(1.0 - roughInternalDiffuseIntegral(MicrofacetType::Beckmann, eta_, 0.0, 1, 128));
+        // Fdr = 1 − Td with Td = (1/η²) 2∫(1 − F)μ dμ (α = 0 path of the integrator: no tables).
+        fdr_ = float(1.0 - roughInternalDiffuseIntegral(MicrofacetType::Beckmann, eta_, 0.0, 1, 128));
         rho_ = getSpectrumTexture(p, "diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
         ks_ = getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
