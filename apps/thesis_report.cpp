@@ -33,6 +33,7 @@ struct Config {
 
 std::shared_ptr<Material> makeMaterial(const Config& c) {
     Properties p("bsdf", c.type, SourceLocation{"thesis_report", 0});
+    p.setFormatVersion(0);  // the thesis' models: Mitsuba 0.6's roughplastic (docs/scene_format.md)
     for (const auto& [k, v] : c.params) p.set(k, v, SourceLocation{"thesis_report", 0});
     return MaterialRegistry::instance().create(p);
 }

@@ -43,9 +43,53 @@ double smoothTransmittance(double eta, double mu) { return 1.0 - fresnelDielectr
 
 }  // namespace
 
-double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha, double mu, int q) {
+namespace {
+
+enum class InterfaceLobe { Transmission, Reflection };
+
+/// ∫₀^φmax of the reflection integrand (i·m)/(μ cosθm) F(i·m) G1(o, m) dφ at one θm. The integrand
+/// has kinks where i·m = μ cosθm + sinθi sinθm cos φ crosses the critical angle (η < 1: F reaches 1)
+/// and where the reflected o = 2(i·m)m − i crosses the horizon (o.z = 2(i·m) cosθm − μ = 0): the
+/// φ-range is split there, q Gauss-Legendre points per piece.
+double reflectionOverPhi(const MicrofacetDistribution& dist, const vec3& wi, double sinI, double mu, double sinM,
+                         double cosM, double phiMax, double eta, const GaussLegendre& gl) {
+    double cuts[4] = {0.0, phiMax, phiMax, phiMax};
+    int n = 1;
+    const auto cutAt = [&](double im) {  // φ where i·m = im (i·m decreases with φ on [0, π])
+        if (!(sinI * sinM > 0)) return;
+        const double c = (im - mu * cosM) / (sinI * sinM);
+        if (!(c > -1.0 && c < 1.0)) return;
+        const double phi = std::acos(c);
+        if (phi > 0.0 && phi < phiMax) cuts[n++] = phi;
+    };
+    if (eta < 1.0) cutAt(std::sqrt(1.0 - eta * eta));  // cosθc of total internal reflection
+    cutAt(mu / (2.0 * cosM));
+    cuts[n++] = phiMax;
+    std::sort(cuts, cuts + n);
+    double sum = 0;
+    for (int piece = 0; piece + 1 < n; ++piece) {
+        const double a = cuts[piece], len = cuts[piece + 1] - a;
+        if (!(len > 0)) continue;
+        for (size_t b = 0; b < gl.x.size(); ++b) {
+            const double phi = a + len * gl.x[b];
+            const vec3 m(float(sinM * std::cos(phi)), float(sinM * std::sin(phi)), float(cosM));
+            const double im = sinI * sinM * std::cos(phi) + mu * cosM;
+            if (im <= 0) continue;
+            const double g1o = dist.smithG1(reflect(wi, m), m);
+            sum += len * gl.w[b] * im / (mu * cosM) * double(fresnelDielectric(float(im), float(eta))) * g1o;
+        }
+    }
+    return sum;
+}
+
+/// Directional transmittance or reflectance of the rough interface lit at cosθi = μ (shared by
+/// roughTransmittanceIntegral and roughReflectanceIntegral).
+double roughInterfaceIntegral(MicrofacetType type, double eta, double alpha, double mu, int q, InterfaceLobe lobe) {
     mu = std::clamp(mu, 1e-4, 1.0);  // μ = 0 is read as its limit (T is linear near grazing)
-    if (alpha <= 0) return smoothTransmittance(eta, mu);
+    if (alpha <= 0) {
+        const double t = smoothTransmittance(eta, mu);
+        return lobe == InterfaceLobe::Transmission ? t : 1.0 - t;
+    }
     const MicrofacetDistribution dist(type, float(alpha), float(alpha));
     const double sinI = std::sqrt(std::max(0.0, 1.0 - mu * mu));
     const vec3 wi(float(sinI), 0.0f, float(mu));
@@ -54,6 +98,8 @@ double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha,
     // T = ∫ G1(i) (i·m)₊ D(m)/μ (1 − F(i·m)) G1(o, m) dωm, o = refract(i, m)  (Walter 2007 eqs.
     // 21, 23 with the change of variables dωo → dωm); with m ~ D(m) cosθm (CDF u, φ):
     // T = ∫du (1/π) ∫₀^φmax G1(i) (i·m)/(μ cosθm) (1 − F) G1(o) dφ.
+    // R is the same with F(i·m) and o = reflect(i, m) (Walter 2007 eqs. 20, 23; G1(o, m) = 0 when
+    // o falls below the surface).
     // The visible range of φ is all of [0, π] while θm ≤ θ* = π/2 − θi, and |φ| ≤ φmax(θm) after:
     // split the u-range at θ* so that each piece is smooth.
     const double thetaStar = M_PI / 2 - std::acos(mu);
@@ -72,6 +118,10 @@ double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha,
             const double cosM = 1.0 / std::sqrt(1.0 + tan2), sinM = std::sqrt(tan2) * cosM;
             double phiMax = M_PI;
             if (piece == 1 && sinI > 0 && sinM > 0) phiMax = std::acos(std::clamp(-(mu * cosM) / (sinI * sinM), -1.0, 1.0));
+            if (lobe == InterfaceLobe::Reflection) {
+                total += du * reflectionOverPhi(dist, wi, sinI, mu, sinM, cosM, phiMax, eta, gl) / M_PI;
+                continue;
+            }
             double inner = 0;
             for (int b = 0; b < q; ++b) {
                 const double phi = phiMax * gl.x[b];
@@ -88,6 +138,30 @@ double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha,
         }
     }
     return total * g1i;
+}
+
+}  // namespace
+
+double roughTransmittanceIntegral(MicrofacetType type, double eta, double alpha, double mu, int q) {
+    return roughInterfaceIntegral(type, eta, alpha, mu, q, InterfaceLobe::Transmission);
+}
+
+double roughReflectanceIntegral(MicrofacetType type, double eta, double alpha, double mu, int q) {
+    return roughInterfaceIntegral(type, eta, alpha, mu, q, InterfaceLobe::Reflection);
+}
+
+double mitsuba3InternalReflectance(MicrofacetType type, double eta, double alpha, int q) {
+    // Mitsuba 3, src/bsdfs/roughplastic.cpp (parameters_changed): m_internal_reflectance =
+    // 2 · mean(R(μ_k, 1/η) μ_k) over the 64 directions μ_k = max(10⁻⁶, k/63) of its transmittance
+    // table, R the directional reflectance of the rough interface seen from inside (light in the
+    // denser medium; total internal reflection on the facets beyond the critical angle).
+    constexpr int kNodes = kMitsuba3TransmittanceNodes;
+    double sum = 0;
+    for (int k = 0; k < kNodes; ++k) {
+        const double mu = std::max(1e-6, double(k) / double(kNodes - 1));
+        sum += roughReflectanceIntegral(type, 1.0 / eta, alpha, mu, q) * mu;
+    }
+    return 2.0 * sum / kNodes;
 }
 
 double roughInternalDiffuseIntegral(MicrofacetType type, double eta, double alpha, int q, int qMu) {
@@ -167,6 +241,22 @@ float RoughTransmittanceTables::internalDiffuseTransmittance(float eta, float al
     float v = 0;  // eq. 2.51
     for (int i = 0; i < se.count; ++i)
         for (int j = 0; j < sa.count; ++j) v += se.w[i] * sa.w[j] * diffuse[size_t(se.idx[i]) * res.nAlpha + sa.idx[j]];
+    return std::clamp(v, 0.0f, 1.0f);
+}
+
+Mitsuba3InternalReflectanceCurve::Mitsuba3InternalReflectanceCurve(MicrofacetType type, float eta, int nAlpha, int q)
+    : nodes_(size_t(std::max(nAlpha, 2)), 0.0f) {
+    const int n = int(nodes_.size());
+    tbb::parallel_for(0, n, [&](int k) {
+        nodes_[size_t(k)] = float(mitsuba3InternalReflectance(type, eta, RoughTransmittanceTables::alphaNode(k, n), q));
+    });
+}
+
+float Mitsuba3InternalReflectanceCurve::at(float alpha) const {
+    const int n = int(nodes_.size());
+    const RoughStencil s = roughCatmullRom(alphaCoord(alpha, n), n);
+    float v = 0;
+    for (int i = 0; i < s.count; ++i) v += s.w[i] * nodes_[size_t(s.idx[i])];
     return std::clamp(v, 0.0f, 1.0f);
 }
 

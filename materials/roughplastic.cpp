@@ -10,6 +10,15 @@
 //   diffuse_reflectance   spectrum | texture (base albedo ρ)       default 0.5
 //   specular_reflectance  spectrum | texture (ks)                  default 1.0
 //   nonlinear             bool (ρ/(1−ρFdr) instead of ρ/(1−Fdr))   default false
+//   sample_visible        bool, visible-normal sampling              default true
+//
+// The scene's `version` chooses the internal reflectance Fdr of the coat (docs/scene_format.md):
+//   0.x (Mitsuba 0.6, the thesis): Fdr = 1 − Td(η, α) (eq. 2.54), tabulated;
+//   2.x / 3.x (Mitsuba 3): Fdr = R_int = 2∫ R(1/η, α, μ) μ dμ, the rough interface's own
+//   directional reflectance from inside, as Mitsuba 3's mean over 64 nodes
+//   (mitsuba3InternalReflectance). It is smaller than 1 − Td by the interface's single-scattering
+//   loss, so the base looks darker (1/(1 − Fdr) 2 % lower at α = 0.01, 64 % at α = 1; GGX, η 1.5).
+// Everything else (specular lobe, T12 T21 / η², sampling) is the same model in both versions.
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
@@ -21,21 +30,18 @@ namespace {
 
 class RoughPlasticBSDF final : public BSDF {
 public:
-    /// `line`: the collapsed μ-line of (η, α) (nMu values) with its Fdr, or nullptr to read the
-    /// full tables through the (η, α) stencil (textured α).
-    RoughPlasticBSDF(const RoughTransmittanceTables* t, const float* line, float lineFdr, MicrofacetDistribution dist,
+    /// `line`: the collapsed μ-line of (η, α) (nMu values), or nullptr to read the full tables
+    /// through the (η, α) stencil (textured α). `fdr`: the coat's internal reflectance (see top).
+    RoughPlasticBSDF(const RoughTransmittanceTables* t, const float* line, float fdr, MicrofacetDistribution dist,
                      float alpha, float eta, const SampledSpectrum& ks, const SampledSpectrum& rho, bool nonlinear)
-        : dist_(dist), alpha_(alpha), eta_(eta), ks_(ks), rhoEff_(rho), rhoAvg_(rho.average()) {
+        : dist_(dist), eta_(eta), ks_(ks), rhoEff_(rho), rhoAvg_(rho.average()) {
         coatT_.tables = t;
-        float fdr;
         if (line) {
             coatT_.lines = line;
             coatT_.nMu = t->res.nMu;
-            fdr = lineFdr;
         } else {
             stencil_ = t->line(eta, alpha);
             coatT_.stencils = &stencil_;
-            fdr = 1.0f - t->internalDiffuseTransmittance(eta_, alpha_);  // eq. 2.54
         }
         for (int c = 0; c < rho.size(); ++c) rhoEff_[c] = roughCoatAlbedo(rho[c], fdr, nonlinear);
     }
@@ -91,7 +97,7 @@ private:
     RoughCoatChannels coatT_;                  // one channel: T(η, α, μ)
     RoughTransmittanceTables::Line stencil_;  // textured α: table stencil of (η, α)
     MicrofacetDistribution dist_;
-    float alpha_, eta_;
+    float eta_;
     SampledSpectrum ks_, rhoEff_;
     float rhoAvg_;
 };
@@ -113,19 +119,35 @@ public:
         rho_ = getSpectrumTexture(p, "diffuse_reflectance", SpectrumKind::Reflectance, 0.5f);
         ks_ = getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
+        sampleVisible_ = p.getBool("sample_visible", true);  // Mitsuba 0.6 and 3: true
+        mitsuba3_ = p.formatVersion() >= 2;
         tables_ = &roughPlasticTables(type_);  // first use builds or loads them
         // Constant α: the (η, α) stencil collapsed once into one μ-line (RoughTablesAtAlpha).
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get())) {
-            const RoughTablesAtAlpha atAlpha(*tables_, std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax));
+            const float alpha = std::clamp(c->value(), 0.0f, RoughTransmittanceTables::kAlphaMax);
+            const RoughTablesAtAlpha atAlpha(*tables_, alpha);
             line_.assign(size_t(atAlpha.nMu()), 0.0f);
             lineFdr_ = 1.0f - atAlpha.collapse(eta_, line_.data());  // eq. 2.54
+            // Mitsuba 3 clamps α to 10⁻⁴ (MicrofacetDistribution::configure).
+            if (mitsuba3_) lineFdr_ = float(mitsuba3InternalReflectance(type_, eta_, std::max(alpha, 1e-4f)));
+        } else if (mitsuba3_) {
+            // Textured α (an iris extension; Mitsuba 3 takes a float): R_int over α at this η.
+            rIntCurve_ = Mitsuba3InternalReflectanceCurve(type_, eta_);
         }
+    }
+
+    /// The coat's internal reflectance at a textured α (see the top of the file).
+    float textureFdr(float alpha) const {
+        if (mitsuba3_) return rIntCurve_.at(alpha);
+        return 1.0f - tables_->internalDiffuseTransmittance(eta_, alpha);  // eq. 2.54
     }
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const float alpha = std::clamp(alpha_->eval(sp.tex), 0.0f, RoughTransmittanceTables::kAlphaMax);
-        return arena.make<RoughPlasticBSDF>(tables_, line_.empty() ? nullptr : line_.data(), lineFdr_,
-                                            MicrofacetDistribution(type_, alpha, alpha), alpha, eta_,
+        const bool constant = !line_.empty();
+        return arena.make<RoughPlasticBSDF>(tables_, constant ? line_.data() : nullptr,
+                                            constant ? lineFdr_ : textureFdr(alpha),
+                                            MicrofacetDistribution(type_, alpha, alpha, sampleVisible_), alpha, eta_,
                                             clampZero(ks_->eval(sp.tex, wl)), clampZero(rho_->eval(sp.tex, wl)),
                                             nonlinear_);
     }
@@ -135,10 +157,11 @@ private:
     FloatTexturePtr alpha_;
     float eta_;
     SpectrumTexturePtr rho_, ks_;
-    bool nonlinear_;
+    bool nonlinear_, sampleVisible_, mitsuba3_;
     const RoughTransmittanceTables* tables_;
     std::vector<float> line_;  // constant α: collapsed μ-line of (η, α)
-    float lineFdr_ = 0.0f;
+    float lineFdr_ = 0.0f;     // constant α: the coat's internal reflectance
+    Mitsuba3InternalReflectanceCurve rIntCurve_;  // textured α, version ≥ 2
 };
 
 std::shared_ptr<Material> createRoughPlastic(const Properties& p) { return std::make_shared<RoughPlasticMaterial>(p); }

@@ -53,7 +53,9 @@ ConductorIOR readConductor(const Properties& p) {
         s.eta = readIOR(p, "eta", IOR(), IorQuantity::ConductorOptics);
         s.k = readIOR(p, "k", IOR(), IorQuantity::ConductorOptics);
     } else {
-        const std::string name = p.getString("material", "none");
+        // Mitsuba 0.6, src/bsdfs/conductor.cpp and roughconductor.cpp: default material "Cu";
+        // Mitsuba 3: "none" (a perfect mirror).
+        const std::string name = p.getString("material", p.formatVersion() >= 2 ? "none" : "Cu");
         const ConductorSpectra preset = withLocation(p.locationOf("material"), [&] { return loadConductorPreset(name); });
         s.mirror = preset.mirror();
         if (!s.mirror) {
@@ -64,7 +66,14 @@ ConductorIOR readConductor(const Properties& p) {
             s.k = IOR::tabulated(withMitsubaRGBModeValue(preset.k, MitsubaTableSource::ConductorPreset, version));
         }
     }
-    s.extIOR = readConstantIOR(p, "ext_ior", 1.0f);
+    // Mitsuba 0.6's exterior index `extEta` (read as ext_eta, default "air"; η and k are divided by
+    // it); Mitsuba 3 has none. `ext_ior` (default 1) is iris's name in every version.
+    if (p.formatVersion() < 2 && p.has("ext_eta")) {
+        if (p.has("ext_ior")) failAt(p.locationOf("ext_ior"), "give either 'ext_eta' (Mitsuba 0.6) or 'ext_ior', not both");
+        s.extIOR = readConstantIOR(p, "ext_eta", 1.000277f);
+    } else {
+        s.extIOR = readConstantIOR(p, "ext_ior", p.formatVersion() >= 2 ? 1.0f : 1.000277f);
+    }
     return s;
 }
 

@@ -44,11 +44,14 @@ std::string conductorDataDir();
 
 /// Read a conductor's optical constants from a scene (Mitsuba parameters), with the IOR reader
 /// (spectral/ior_params.h):
-///   material  preset name (default "none" when neither eta nor k is given)
+///   material  preset name when neither eta nor k is given (default "none" in version 2/3 scenes,
+///             Mitsuba 3; "Cu" in version 0.x scenes, Mitsuba 0.6; Properties::formatVersion)
 ///   eta, k    IorQuantity::ConductorOptics (float, rgb or spectrum as Mitsuba reads them, ≥ 0) —
 ///             both or neither
-///   ext_ior   float or IOR preset name of the outside medium (default 1; iris extension, the
-///             thesis uses η_i = 1.00028 for air)
+///   ext_ior   float or IOR preset name of the outside medium (iris extension, the thesis uses
+///             η_i = 1.00028 for air): default 1 in version 2/3 (Mitsuba 3 has no exterior index),
+///             1.000277 ("air") in version 0.x, where Mitsuba 0.6's name `extEta` (ext_eta) is
+///             read too
 ConductorIOR readConductor(const Properties& p);
 
 }  // namespace iris

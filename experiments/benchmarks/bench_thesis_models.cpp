@@ -22,6 +22,7 @@ struct Instance {
 
 std::unique_ptr<Instance> make(const std::string& type, std::initializer_list<std::pair<std::string, PropertyValue>> params) {
     Properties p("bsdf", type, SourceLocation{"bench", 0});
+    p.setFormatVersion(0);  // the thesis' models: Mitsuba 0.6's roughplastic (docs/scene_format.md)
     for (const auto& [k, v] : params) p.set(k, v, SourceLocation{"bench", 0});
     auto inst = std::make_unique<Instance>();
     inst->material = MaterialRegistry::instance().create(p);

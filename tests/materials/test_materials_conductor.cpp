@@ -172,3 +172,48 @@ TEST(MaterialsConductor, RoughApproachesSmoothAsAlphaVanishes) {
         }
     }
 }
+
+TEST(MaterialsConductor, VersionChoosesDefaultMaterialAndExteriorIndex) {
+    // Mitsuba 0.6 (version 0.x): material "Cu" and exterior index `extEta` (ext_eta) "air" by
+    // default; Mitsuba 3 (2.x/3.x): material "none" (a perfect mirror) and no exterior index.
+    const vec3 wo = dirFromCos(0.6f, 0.3f);
+    auto weight = [&](const BSDFInstance& inst) {
+        const auto s = inst.bsdf->sample(wo, 0.5f, vec2(0.5f), TransportMode::Radiance);
+        EXPECT_TRUE(s && s->isSpecular());
+        return s ? SampledSpectrum(s->f * (std::abs(s->wi.z) / s->pdf)) : SampledSpectrum(3);
+    };
+    for (const char* type : {"conductor", "roughconductor"}) {
+        const bool rough = std::string(type) == "roughconductor";
+        if (rough) {
+            // The rough lobe is not a delta: compare eval directly.
+            const vec3 wi = dirFromCos(0.5f, 3.0f);
+            auto f06 = makeBSDFVersion(0, type, {{"alpha", 0.3f}});
+            auto cu = makeBSDFVersion(3, type, {{"alpha", 0.3f}, {"material", std::string("Cu")}, {"ext_ior", 1.000277f}});
+            auto f3 = makeBSDFVersion(3, type, {{"alpha", 0.3f}});
+            auto none = makeBSDFVersion(3, type, {{"alpha", 0.3f}, {"material", std::string("none")}});
+            const SampledSpectrum a = f06.bsdf->eval(wo, wi, TransportMode::Radiance);
+            const SampledSpectrum b = cu.bsdf->eval(wo, wi, TransportMode::Radiance);
+            const SampledSpectrum c = f3.bsdf->eval(wo, wi, TransportMode::Radiance);
+            const SampledSpectrum d = none.bsdf->eval(wo, wi, TransportMode::Radiance);
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_EQ(a[k], b[k]) << type << " " << k;
+                EXPECT_EQ(c[k], d[k]) << type << " " << k;
+            }
+            EXPECT_LT(a[2], 0.8f * c[2]);  // copper reflects little blue
+            continue;
+        }
+        const SampledSpectrum v06 = weight(makeBSDFVersion(0, type, {}));
+        const SampledSpectrum cu = weight(makeBSDFVersion(3, type, {{"material", std::string("Cu")}, {"ext_ior", 1.000277f}}));
+        const SampledSpectrum ext = weight(makeBSDFVersion(0, type, {{"ext_eta", 1.000277f}}));
+        const SampledSpectrum v3 = weight(makeBSDFVersion(3, type, {}));
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(v06[k], cu[k]) << k;
+            EXPECT_EQ(ext[k], cu[k]) << k;
+            EXPECT_FLOAT_EQ(v3[k], 1.0f) << k;
+        }
+        EXPECT_LT(v06[2], 0.8f);
+    }
+    // ext_eta is Mitsuba 0.6's name only; with ext_ior it is ambiguous.
+    EXPECT_THROW(makeBSDFVersion(3, "conductor", {{"ext_eta", 1.0f}}), Error);
+    EXPECT_THROW(makeBSDFVersion(0, "conductor", {{"ext_eta", 1.0f}, {"ext_ior", 1.0f}}), Error);
+}

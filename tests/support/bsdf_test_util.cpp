@@ -39,6 +39,13 @@ BSDFInstance makeBSDF(const std::string& type, std::initializer_list<Param> para
     return makeBSDF(*makeProps(type, params), wl);
 }
 
+BSDFInstance makeBSDFVersion(int formatVersion, const std::string& type, std::initializer_list<Param> params,
+                             SampledWavelengths wl) {
+    const auto p = makeProps(type, params);
+    p->setFormatVersion(formatVersion);
+    return makeBSDF(*p, wl);
+}
+
 double gammaQ(double a, double x) {
     if (x <= 0) return 1.0;
     const double lnPre = -x + a * std::log(x) - std::lgamma(a);

@@ -57,6 +57,10 @@ std::shared_ptr<Properties> makeProps(const std::string& type, std::initializer_
 BSDFInstance makeBSDF(const Properties& props, SampledWavelengths wl);
 BSDFInstance makeBSDF(const std::string& type, std::initializer_list<Param> params,
                       SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths()));
+/// makeBSDF for an object of a scene file of format version `formatVersion` (0: Mitsuba 0.6,
+/// 2/3: Mitsuba 3; Properties::formatVersion), for plugins whose semantics depend on it.
+BSDFInstance makeBSDFVersion(int formatVersion, const std::string& type, std::initializer_list<Param> params,
+                             SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths()));
 
 struct Chi2Options {
     int thetaBins = 20;       // over [0, π]; keep even so the horizon is a cell boundary
