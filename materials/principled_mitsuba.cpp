@@ -177,6 +177,9 @@ public:
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
         Geometry g;
         if (!geometry(wo, wi, &g)) return 0.0f;
+        // Without transmission nothing is sampled from inside (Mitsuba's pdf is not 0 there, but
+        // its eval is, so this changes no estimate).
+        if (!g.front && !(bsdf_ > 0)) return 0.0f;
         const Probabilities pr = probabilities(g.front, g.F);
         // dωh/dωl: reflection 1/(4|l·h|) (Walter et al. 2007 eq. 14), refraction η'²|l·h|/(v·h + η' l·h)² (eq. 17).
         const float jac = g.reflect ? 1.0f / (4.0f * std::abs(g.dl))

@@ -203,8 +203,8 @@ MaterialStress proposed() {
         });
 }
 
-MaterialStress principled() {
-    auto pr = [] { return P("principled"); };
+MaterialStress disney() {
+    auto pr = [] { return P("disney"); };
     return nonConserving(
         10.0, "Disney 2012: Burley diffuse retro-reflection (F_D90 up to 2.5) and sheen are added, not energy-normalised",
         {
@@ -218,6 +218,41 @@ MaterialStress principled() {
             {"clearcoat 1 gloss 1 everything max", pr().f("base_color", 1.0f).f("clearcoat", 1.0f).f("clearcoat_gloss", 1.0f)
                                                        .f("sheen", 1.0f).f("specular", 1.0f).f("spec_tint", 1.0f)},
             {"per-channel", pr().rgb("base_color", 1.0f, 0.0f, 0.5f).f("metallic", 0.5f).f("roughness", 0.3f)},
+        });
+}
+
+MaterialStress principled() {
+    auto pr = [] { return P("principled"); };
+    return nonConserving(
+        10.0, "Mitsuba 3 principled: Burley diffuse retro-reflection, sheen and clearcoat are added, not energy-normalised",
+        {
+            {"defaults", pr()},
+            {"white rough 1", pr().f("base_color", 1.0f).f("roughness", 1.0f)},
+            {"white rough 0 specular 1", pr().f("base_color", 1.0f).f("roughness", 0.0f).f("specular", 1.0f)},
+            {"metallic 1 rough 1e-4 aniso 1", pr().f("base_color", 1.0f).f("metallic", 1.0f).f("roughness", 1e-4f)
+                                                  .f("anisotropic", 1.0f)},
+            {"sheen 1 tint 1 flatness 1", pr().f("base_color", 1.0f).f("sheen", 1.0f).f("sheen_tint", 1.0f)
+                                              .f("flatness", 1.0f).f("roughness", 1.0f)},
+            {"clearcoat 1 gloss 1 everything max", pr().f("base_color", 1.0f).f("clearcoat", 1.0f).f("clearcoat_gloss", 1.0f)
+                                                       .f("sheen", 1.0f).f("specular", 1.0f).f("spec_tint", 1.0f)},
+            {"spec_trans 1 rough 1e-4 eta 1.001", pr().f("base_color", 1.0f).f("spec_trans", 1.0f).f("roughness", 1e-4f)
+                                                      .f("eta", 1.001f)},
+            {"spec_trans 0.5 eta 3 rough 1", pr().f("base_color", 1.0f).f("spec_trans", 0.5f).f("eta", 3.0f).f("roughness", 1.0f)},
+            {"per-channel", pr().rgb("base_color", 1.0f, 0.0f, 0.5f).f("metallic", 0.5f).f("roughness", 0.3f)},
+        });
+}
+
+MaterialStress principledthin() {
+    auto pr = [] { return P("principledthin"); };
+    return nonConserving(
+        10.0, "Mitsuba 3 principledthin: Burley diffuse retro-reflection and sheen are added, not energy-normalised",
+        {
+            {"defaults", pr()},
+            {"white spec_trans 1 rough 1e-4", pr().f("base_color", 1.0f).f("spec_trans", 1.0f).f("roughness", 1e-4f)},
+            {"diff_trans 2 rough 1", pr().f("base_color", 1.0f).f("diff_trans", 2.0f).f("roughness", 1.0f)},
+            {"everything max", pr().f("base_color", 1.0f).f("spec_trans", 0.5f).f("diff_trans", 1.0f).f("sheen", 1.0f)
+                                   .f("sheen_tint", 1.0f).f("flatness", 1.0f).f("spec_tint", 1.0f).f("eta", 3.0f)},
+            {"eta 0.5 aniso 1", pr().f("spec_trans", 0.7f).f("eta", 0.5f).f("anisotropic", 1.0f).f("roughness", 0.2f)},
         });
 }
 
@@ -352,7 +387,9 @@ const std::map<std::string, Builder>& table() {
         {"phong", phong},
         {"cook_torrance", cookTorrance},
         {"granier", granier},
+        {"disney", disney},
         {"principled", principled},
+        {"principledthin", principledthin},
         {"proposed", proposed},
         {"cloth", cloth},
         {"velvet", velvet},
