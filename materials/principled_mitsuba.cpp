@@ -411,25 +411,43 @@ float baseLuminance(const SpectrumTexture& tex, const TextureQuery& q, const Sam
 
 float clampUnit(const FloatTexturePtr& t, const TextureQuery& q) { return std::clamp(t->eval(q), 0.0f, 1.0f); }
 
+/// The parameters both plugins have.
+struct CommonTextures {
+    SpectrumTexturePtr baseColor;
+    FloatTexturePtr roughness, anisotropic, specTrans, specTint, sheen, sheenTint, flatness;
+};
+
+/// Their values at a shading point (clamped to [0, 1]) and the base colour's luminance for Ctint
+/// (only computed when a tint is on, as Mitsuba does).
+struct CommonValues {
+    SampledSpectrum base;
+    float lum = 1.0f, roughness, anisotropic, specTrans, specTint, sheen, sheenTint, flatness;
+};
+CommonValues evalCommon(const CommonTextures& c, const TextureQuery& q, const SampledWavelengths& wl) {
+    CommonValues v;
+    v.base = clampZero(c.baseColor->eval(q, wl));
+    v.roughness = clampUnit(c.roughness, q), v.anisotropic = clampUnit(c.anisotropic, q);
+    v.specTrans = clampUnit(c.specTrans, q), v.specTint = clampUnit(c.specTint, q);
+    v.sheen = clampUnit(c.sheen, q), v.sheenTint = clampUnit(c.sheenTint, q), v.flatness = clampUnit(c.flatness, q);
+    if (v.specTint > 0 || (v.sheenTint > 0 && v.sheen > 0)) v.lum = baseLuminance(*c.baseColor, q, wl, v.base);
+    return v;
+}
+
 class PrincipledM3Material final : public Material {
 public:
     struct Textures {
-        SpectrumTexturePtr baseColor;
-        FloatTexturePtr roughness, anisotropic, metallic, specTrans, specTint, sheen, sheenTint, flatness, clearcoat,
-            clearcoatGloss;
+        CommonTextures c;
+        FloatTexturePtr metallic, clearcoat, clearcoatGloss;
     };
     PrincipledM3Material(Textures t, PrincipledM3Config c) : t_(std::move(t)), c_(c) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const auto& q = sp.tex;
-        const PrincipledM3Params p{clampUnit(t_.roughness, q), clampUnit(t_.anisotropic, q),  clampUnit(t_.metallic, q),
-                                   clampUnit(t_.specTrans, q), clampUnit(t_.specTint, q),     clampUnit(t_.sheen, q),
-                                   clampUnit(t_.sheenTint, q), clampUnit(t_.flatness, q),     clampUnit(t_.clearcoat, q),
+        const CommonValues v = evalCommon(t_.c, q, wl);
+        const PrincipledM3Params p{v.roughness, v.anisotropic, clampUnit(t_.metallic, q), v.specTrans, v.specTint,
+                                   v.sheen,     v.sheenTint,   v.flatness,                clampUnit(t_.clearcoat, q),
                                    clampUnit(t_.clearcoatGloss, q)};
-        const SampledSpectrum base = clampZero(t_.baseColor->eval(q, wl));
-        const bool tinted = p.specTint > 0 || (p.sheenTint > 0 && p.sheen > 0);
-        const float lum = tinted ? baseLuminance(*t_.baseColor, q, wl, base) : 1.0f;
-        return arena.make<PrincipledM3BSDF>(base, lum, p, c_);
+        return arena.make<PrincipledM3BSDF>(v.base, v.lum, p, c_);
     }
 
 private:
@@ -440,26 +458,17 @@ private:
 class PrincipledThinMaterial final : public Material {
 public:
     struct Textures {
-        SpectrumTexturePtr baseColor;
-        FloatTexturePtr roughness, anisotropic, specTrans, specTint, sheen, sheenTint, flatness, diffTrans, eta;
+        CommonTextures c;
+        FloatTexturePtr diffTrans, eta;
     };
     PrincipledThinMaterial(Textures t, PrincipledThinConfig c) : t_(std::move(t)), c_(c) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const auto& q = sp.tex;
-        const PrincipledThinParams p{clampUnit(t_.roughness, q),
-                                     clampUnit(t_.anisotropic, q),
-                                     clampUnit(t_.specTrans, q),
-                                     clampUnit(t_.specTint, q),
-                                     clampUnit(t_.sheen, q),
-                                     clampUnit(t_.sheenTint, q),
-                                     clampUnit(t_.flatness, q),
-                                     std::clamp(t_.diffTrans->eval(q), 0.0f, 2.0f),
-                                     std::max(t_.eta->eval(q), 1e-3f)};
-        const SampledSpectrum base = clampZero(t_.baseColor->eval(q, wl));
-        const bool tinted = p.specTint > 0 || (p.sheenTint > 0 && p.sheen > 0);
-        const float lum = tinted ? baseLuminance(*t_.baseColor, q, wl, base) : 1.0f;
-        return arena.make<PrincipledThinBSDF>(base, lum, p, c_);
+        const CommonValues v = evalCommon(t_.c, q, wl);
+        const PrincipledThinParams p{v.roughness, v.anisotropic, v.specTrans, v.specTint, v.sheen, v.sheenTint, v.flatness,
+                                     std::clamp(t_.diffTrans->eval(q), 0.0f, 2.0f), std::max(t_.eta->eval(q), 1e-3f)};
+        return arena.make<PrincipledThinBSDF>(v.base, v.lum, p, c_);
     }
 
 private:
@@ -499,22 +508,29 @@ void rejectDisneyOnly(const Properties& p) {
                    "in the same Hanrahan-Krueger term)" : " (use 'spec_tint')");
 }
 
-std::shared_ptr<Material> createPrincipledMitsuba(const Properties& p) {
+/// The parameters of both plugins (Mitsuba 3's names and defaults).
+CommonTextures readCommon(const Properties& p) {
     rejectDisneyOnly(p);
+    CommonTextures c;
+    c.baseColor = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
+    c.roughness = rangedParam(p, "roughness", 0.5f);
+    c.anisotropic = rangedParam(p, "anisotropic", 0.0f);
+    c.specTrans = rangedParam(p, "spec_trans", 0.0f);
+    c.specTint = rangedParam(p, "spec_tint", 0.0f);
+    c.sheen = rangedParam(p, "sheen", 0.0f);
+    c.sheenTint = rangedParam(p, "sheen_tint", 0.0f);
+    c.flatness = rangedParam(p, "flatness", 0.0f);
+    return c;
+}
+
+std::shared_ptr<Material> createPrincipledMitsuba(const Properties& p) {
     PrincipledM3Material::Textures t;
-    t.baseColor = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
-    t.roughness = rangedParam(p, "roughness", 0.5f);
-    t.anisotropic = rangedParam(p, "anisotropic", 0.0f);
+    t.c = readCommon(p);
     t.metallic = rangedParam(p, "metallic", 0.0f);
-    t.specTrans = rangedParam(p, "spec_trans", 0.0f);
-    t.specTint = rangedParam(p, "spec_tint", 0.0f);
-    t.sheen = rangedParam(p, "sheen", 0.0f);
-    t.sheenTint = rangedParam(p, "sheen_tint", 0.0f);
-    t.flatness = rangedParam(p, "flatness", 0.0f);
     t.clearcoat = rangedParam(p, "clearcoat", 0.0f);
     t.clearcoatGloss = rangedParam(p, "clearcoat_gloss", 0.0f);
     PrincipledM3Config c;
-    c.hasSpecTrans = lobeFlag(p, "spec_trans", t.specTrans);
+    c.hasSpecTrans = lobeFlag(p, "spec_trans", t.c.specTrans);
     c.hasClearcoat = lobeFlag(p, "clearcoat", t.clearcoat);
     // Mitsuba 3 principled.cpp: `eta` and `specular` are alternatives (both given is an error);
     // eta = 1 and specular = 0 are moved to 1.001 and 1e-3 when the transmission lobe is on.
@@ -548,16 +564,8 @@ std::shared_ptr<Material> createPrincipled(const Properties& p) {
 }
 
 std::shared_ptr<Material> createPrincipledThin(const Properties& p) {
-    rejectDisneyOnly(p);
     PrincipledThinMaterial::Textures t;
-    t.baseColor = getSpectrumTexture(p, "base_color", SpectrumKind::Reflectance, 0.5f);
-    t.roughness = rangedParam(p, "roughness", 0.5f);
-    t.anisotropic = rangedParam(p, "anisotropic", 0.0f);
-    t.specTrans = rangedParam(p, "spec_trans", 0.0f);
-    t.specTint = rangedParam(p, "spec_tint", 0.0f);
-    t.sheen = rangedParam(p, "sheen", 0.0f);
-    t.sheenTint = rangedParam(p, "sheen_tint", 0.0f);
-    t.flatness = rangedParam(p, "flatness", 0.0f);
+    t.c = readCommon(p);
     t.diffTrans = rangedParam(p, "diff_trans", 0.0f, 0.0f, 2.0f);
     // Mitsuba 3 principledthin.cpp: eta is a float or texture, default 1.5 (no `specular`).
     t.eta = getFloatTexture(p, "eta", 1.5f);
