@@ -105,24 +105,37 @@ std::vector<Table> tables() {
                                           props("roughdielectric", {{"distribution", std::string(dist)}, {"alpha", a}, {"int_ior", 1.5f}, {"ext_ior", 1.0f}})});
                      return r;
                  }});
-    t.push_back({"principled", "principled, base_color 1 unless noted (red channel)", {1.0f, 0.7f, 0.4f, 0.2f, 0.05f}, 0,
+    t.push_back({"principled", "disney (Disney 2012; `principled` in 0.x scenes), base_color 1 unless noted (red channel)", {1.0f, 0.7f, 0.4f, 0.2f, 0.05f}, 0,
                  TransportMode::Radiance, [] {
                      std::vector<Row> r;
                      for (float x : {0.1f, 0.3f, 0.6f, 1.0f})
-                         r.push_back({fmt("metallic 1, roughness %.1f", x), props("principled", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", x}})});
+                         r.push_back({fmt("metallic 1, roughness %.1f", x), props("disney", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", x}})});
                      r.push_back({"metallic 1, roughness 0.6, anisotropic 0.9",
-                                  props("principled", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.6f}, {"anisotropic", 0.9f}})});
-                     r.push_back({"dielectric, roughness 0.5 (defaults)", props("principled", {{"base_color", 1.0f}})});
-                     r.push_back({"dielectric, roughness 1.0", props("principled", {{"base_color", 1.0f}, {"roughness", 1.0f}})});
-                     r.push_back({"dielectric, roughness 0.2", props("principled", {{"base_color", 1.0f}, {"roughness", 0.2f}})});
+                                  props("disney", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.6f}, {"anisotropic", 0.9f}})});
+                     r.push_back({"dielectric, roughness 0.5 (defaults)", props("disney", {{"base_color", 1.0f}})});
+                     r.push_back({"dielectric, roughness 1.0", props("disney", {{"base_color", 1.0f}, {"roughness", 1.0f}})});
+                     r.push_back({"dielectric, roughness 0.2", props("disney", {{"base_color", 1.0f}, {"roughness", 0.2f}})});
                      for (float x : {1.0f, 0.0f})
                          r.push_back({fmt("specular 0 (Burley diffuse + Schlick F_H residual), roughness %.0f", x),
-                                      props("principled", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", x}})});
-                     r.push_back({"subsurface 1, roughness 0.5", props("principled", {{"base_color", 1.0f}, {"subsurface", 1.0f}})});
-                     r.push_back({"sheen 1, roughness 0.5", props("principled", {{"base_color", 1.0f}, {"sheen", 1.0f}})});
-                     r.push_back({"clearcoat 1, gloss 1", props("principled", {{"base_color", 1.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}})});
+                                      props("disney", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", x}})});
+                     r.push_back({"subsurface 1, roughness 0.5", props("disney", {{"base_color", 1.0f}, {"subsurface", 1.0f}})});
+                     r.push_back({"sheen 1, roughness 0.5", props("disney", {{"base_color", 1.0f}, {"sheen", 1.0f}})});
+                     r.push_back({"clearcoat 1, gloss 1", props("disney", {{"base_color", 1.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}})});
                      r.push_back({"everything 1 (spec 1, sheen 1, clearcoat 1, subsurface 1)",
-                                  props("principled", {{"base_color", 1.0f}, {"specular", 1.0f}, {"sheen", 1.0f}, {"clearcoat", 1.0f}, {"subsurface", 1.0f}})});
+                                  props("disney", {{"base_color", 1.0f}, {"specular", 1.0f}, {"sheen", 1.0f}, {"clearcoat", 1.0f}, {"subsurface", 1.0f}})});
+                     return r;
+                 }});
+    t.push_back({"principled_mitsuba", "principled (Mitsuba 3), base_color 1 unless noted (red channel)", {1.0f, 0.7f, 0.4f, 0.2f, 0.05f}, 0,
+                 TransportMode::Radiance, [] {
+                     std::vector<Row> r;
+                     r.push_back({"dielectric, roughness 0.5 (defaults)", props("principled", {{"base_color", 1.0f}})});
+                     r.push_back({"specular 0 (η = 1: Burley diffuse only), roughness 1", props("principled", {{"base_color", 1.0f}, {"specular", 0.0f}, {"roughness", 1.0f}})});
+                     r.push_back({"metallic 1, roughness 0.3", props("principled", {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", 0.3f}})});
+                     r.push_back({"spec_trans 1, roughness 0.3 (R + T/η², radiance transport)", props("principled", {{"base_color", 1.0f}, {"spec_trans", 1.0f}, {"roughness", 0.3f}})});
+                     r.push_back({"clearcoat 1, gloss 1, base 0, specular 0", props("principled", {{"base_color", 0.0f}, {"specular", 0.0f}, {"clearcoat", 1.0f}, {"clearcoat_gloss", 1.0f}})});
+                     r.push_back({"sheen 1, roughness 0.5", props("principled", {{"base_color", 1.0f}, {"sheen", 1.0f}})});
+                     r.push_back({"principledthin spec_trans 1, roughness 0.3 (R + T)", props("principledthin", {{"base_color", 1.0f}, {"spec_trans", 1.0f}, {"roughness", 0.3f}})});
+                     r.push_back({"principledthin diff_trans 1 (R + T)", props("principledthin", {{"base_color", 1.0f}, {"diff_trans", 1.0f}})});
                      return r;
                  }});
     t.push_back({"cloth", "cloth sheen only (base_color 0, sheen_color 1), velvet (reflectance 1), and cloth base 1 + sheen 1",

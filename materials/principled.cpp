@@ -34,6 +34,7 @@
 #include "core/sampling.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
+#include "materials/principled.h"
 #include "materials/principled_terms.h"
 #include "materials/fresnel.h"
 #include "materials/textures/texture_params.h"
@@ -197,20 +198,22 @@ private:
 /// ((η − 1)/(η + 1))² (Mitsuba 3, src/bsdfs/principled.cpp: eta and specular are in one-to-one
 /// correspondence and exclude each other).
 FloatTexturePtr specularFromEta(const Properties& p) {
-    if (p.has("specular")) failAt(p.locationOf("eta"), "principled: give either 'eta' or 'specular', not both");
+    if (p.has("specular")) failAt(p.locationOf("eta"), p.type(), ": give either 'eta' or 'specular', not both");
     const float eta = readConstantIOR(p, "eta", 1.5f);
     const float specular = schlickF0FromEta(eta) / 0.08f;
     if (!(specular <= 1.0f))
-        failAt(p.locationOf("eta"), "principled: eta = ", eta, " needs specular = ", specular, " > 1, beyond this model's ",
+        failAt(p.locationOf("eta"), p.type(), ": eta = ", eta, " needs specular = ", specular, " > 1, beyond this model's ",
                "range (0.08 specular is its largest normal-incidence reflectance; eta in [0.559, 1.788])");
     return std::make_shared<ConstantFloatTexture>(specular);
 }
 
-std::shared_ptr<Material> createPrincipled(const Properties& p) {
+}  // namespace
+
+std::shared_ptr<Material> createDisneyPrincipled(const Properties& p) {
     auto unitParam = [&](const std::string& name, float def) {
         FloatTexturePtr t = getFloatTexture(p, name, def);
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(t.get()); c && !(c->value() >= 0 && c->value() <= 1))
-            failAt(p.locationOf(name), "principled: parameter '", name, "' must be in [0, 1], got ", c->value());
+            failAt(p.locationOf(name), p.type(), ": parameter '", name, "' must be in [0, 1], got ", c->value());
         return t;
     };
     PrincipledMaterial::Textures t;
@@ -219,7 +222,7 @@ std::shared_ptr<Material> createPrincipled(const Properties& p) {
     t.metallic = unitParam("metallic", 0.0f);
     t.specular = p.has("eta") ? specularFromEta(p) : unitParam("specular", 0.5f);
     if (p.has("spec_tint") && p.has("specular_tint"))
-        failAt(p.locationOf("specular_tint"), "principled: give either 'spec_tint' or its alias 'specular_tint', not both");
+        failAt(p.locationOf("specular_tint"), p.type(), ": give either 'spec_tint' or its alias 'specular_tint', not both");
     t.specularTint = unitParam(p.has("specular_tint") ? "specular_tint" : "spec_tint", 0.0f);
     t.roughness = unitParam("roughness", 0.5f);
     t.anisotropic = unitParam("anisotropic", 0.0f);
@@ -230,8 +233,8 @@ std::shared_ptr<Material> createPrincipled(const Properties& p) {
     return std::make_shared<PrincipledMaterial>(std::move(t));
 }
 
-}  // namespace
-
-IRIS_REGISTER(MaterialRegistry, "principled", createPrincipled);
+// `disney` in every scene version; `principled` chooses between this model (version 0.x) and
+// Mitsuba 3's (materials/principled_mitsuba.cpp).
+IRIS_REGISTER(MaterialRegistry, "disney", createDisneyPrincipled);
 
 }  // namespace iris

@@ -73,4 +73,44 @@ inline vec2 anisotropicAlphas(float roughness, float anisotropic) {
 /// `disney.brdf` uses the rounded weights (0.3, 0.6, 0.1); we use the exact Rec.709 Y.
 inline float luminance(const vec3& rgb) { return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z; }
 
+// ---- Mitsuba 3's principled / principledthin (materials/principled_mitsuba.cpp) ----
+// [B15] B. Burley, "Extending the Disney BRDF to a BSDF with Integrated Subsurface Scattering",
+// SIGGRAPH 2015 course "Physically Based Shading in Theory and Practice"; Mitsuba 3,
+// src/bsdfs/principled.cpp, principledthin.cpp, principledhelpers.h.
+
+/// Rec.709 luminance with the weights Mitsuba 3 uses (include/mitsuba/core/spectrum.h, `luminance`
+/// of a Color3: the Y row of its sRGB → XYZ matrix).
+inline float luminanceMitsuba(const vec3& rgb) { return 0.212671f * rgb.x + 0.715160f * rgb.y + 0.072169f * rgb.z; }
+
+/// The Schlick weight w of Mitsuba 3's `calc_schlick(R0, cosθ, η)`, F = R0 + (1 − R0) w: for a
+/// relative index η_it > 1 on cosθ's side w = (1 − |cosθ|)^5; otherwise (light arriving from the
+/// denser side) the transmitted cosine is used, w = (1 − cosθt)^5 with sin²θt = η_it⁻² sin²θ
+/// (cosθt = 0 under total internal reflection, so F = 1) — Schlick 1994's rule that his
+/// approximation takes the angle on the less dense side.
+inline float schlickWeightMitsuba(float cosTheta, float eta) {
+    const float etaIT = cosTheta >= 0.0f ? eta : 1.0f / eta;
+    if (etaIT > 1.0f) return schlickWeight(std::abs(cosTheta));
+    const float etaTI = 1.0f / etaIT;
+    const float cos2T = 1.0f - (1.0f - cosTheta * cosTheta) * etaTI * etaTI;
+    return schlickWeight(safeSqrt(cos2T));
+}
+
+/// Mitsuba 3's `specular` → η (principled.cpp): the inverse of 0.08 specular = ((η − 1)/(η + 1))²,
+/// η = 2 / (1 − sqrt(0.08 specular)) − 1 ([B15] §5.1 relates specular and η the same way).
+inline float etaFromSpecular(float specular) { return 2.0f / (1.0f - std::sqrt(0.08f * specular)) - 1.0f; }
+
+/// [B15] §5.3 eqs. 4–5, as Mitsuba 3 writes Burley's diffuse: the Lambertian part with the
+/// Fresnel-like darkening, f_d = (1 − F_L/2)(1 − F_V/2), plus the retro-reflection
+/// f_retro = R_R (F_L + F_V + F_L F_V (R_R − 1)), R_R = 2 roughness cos²θd, F_x = (1 − cosθx)^5.
+/// Algebraically equal to burleyDiffuseFactor ([B12]) with F_D90 = 0.5 + R_R.
+inline float burley2015DiffuseFactor(float cosL, float cosV, float cosD, float roughness) {
+    const float fl = schlickWeight(cosL), fv = schlickWeight(cosV);
+    const float rr = 2.0f * roughness * cosD * cosD;
+    return (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
+}
+
+/// [B15] Figure 15 as Mitsuba 3's principledthin applies it: the roughness of the thin-surface
+/// transmission lobe, (0.65 η − 0.35) roughness.
+inline float thinTransmissionRoughness(float eta, float roughness) { return (0.65f * eta - 0.35f) * roughness; }
+
 }  // namespace iris::principled

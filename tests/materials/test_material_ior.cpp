@@ -99,13 +99,17 @@ TEST(MaterialIOR, PresetNamesOnEveryBSDFThatTakesAnIndex) {
 }
 
 TEST(MaterialIOR, PrincipledEtaIsMitsubasSpecular) {
-    // Mitsuba 3: 0.08 specular = ((η − 1)/(η + 1))², so η = 1.5 is the default specular 0.5.
-    const BSDFInstance eta = makeBSDF("principled", {{"eta", 1.5f}});
-    const BSDFInstance specular = makeBSDF("principled", {{"specular", schlickF0FromEta(1.5f) / 0.08f}});
-    expectSameBSDF(eta, specular, "principled eta");
+    // Mitsuba 3: 0.08 specular = ((η − 1)/(η + 1))², so η = 1.5 is the default specular 0.5; in both
+    // of iris's principled models (Mitsuba 3's `principled`, Disney 2012 `disney`).
+    for (const char* type : {"principled", "disney"}) {
+        const BSDFInstance eta = makeBSDF(type, {{"eta", 1.5f}});
+        const BSDFInstance specular = makeBSDF(type, {{"specular", schlickF0FromEta(1.5f) / 0.08f}});
+        expectSameBSDF(eta, specular, std::string(type) + " eta");
+        EXPECT_THROW(makeBSDF(type, {{"eta", 1.5f}, {"specular", 0.5f}}), Error);
+    }
     EXPECT_NEAR(schlickF0FromEta(1.5f) / 0.08f, 0.5f, 1e-6f);
-    EXPECT_THROW(makeBSDF("principled", {{"eta", 1.5f}, {"specular", 0.5f}}), Error);
-    EXPECT_THROW(makeBSDF("principled", {{"eta", S("diamond")}}), Error);  // beyond 0.08 specular
+    EXPECT_THROW(makeBSDF("disney", {{"eta", S("diamond")}}), Error);  // beyond Burley's 0.08 specular
+    EXPECT_NO_THROW(makeBSDF("principled", {{"eta", S("diamond")}}));  // Mitsuba 3: any η (exact Fresnel)
 }
 
 TEST(MaterialIOR, UnknownNameIsAFileLineErrorListingTheNames) {

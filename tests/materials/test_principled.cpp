@@ -60,7 +60,7 @@ TEST(PrincipledTerms, AnisotropicAlphas) {
 TEST(Principled, ZeroConfigurationIsBurleyDiffuseAtNormalIncidence) {
     // specular = metallic = sheen = clearcoat = subsurface = 0, roughness = 1, wo = n.
     const vec3 base(0.8f, 0.5f, 0.2f);
-    auto inst = makeBSDF("principled", {{"base_color", RGBValue{base}},
+    auto inst = makeBSDF("disney", {{"base_color", RGBValue{base}},
                                         {"specular", 0.0f},
                                         {"metallic", 0.0f},
                                         {"sheen", 0.0f},
@@ -90,14 +90,14 @@ TEST(Principled, ZeroConfigurationIsBurleyDiffuseAtNormalIncidence) {
 
 TEST(Principled, MetallicHasNoDiffuseLobe) {
     const vec3 base(0.9f, 0.6f, 0.3f);
-    auto metal = makeBSDF("principled", {{"base_color", RGBValue{base}},
+    auto metal = makeBSDF("disney", {{"base_color", RGBValue{base}},
                                          {"metallic", 1.0f},
                                          {"roughness", 0.4f},
                                          {"subsurface", 0.7f},
                                          {"sheen", 1.0f},
                                          {"specular", 0.9f}});
     EXPECT_FALSE(metal.bsdf->flags() & kBSDFDiffuse);
-    auto dielectric = makeBSDF("principled", {{"metallic", 0.0f}});
+    auto dielectric = makeBSDF("disney", {{"metallic", 0.0f}});
     EXPECT_TRUE(dielectric.bsdf->flags() & kBSDFDiffuse);
     // f = (Cd + (1 − Cd) F_H) D G / (4 cosθl cosθv): nothing of the subsurface, sheen or specular.
     const vec2 a = principled::anisotropicAlphas(0.4f, 0.0f);
@@ -127,9 +127,9 @@ TEST(Principled, SpecularTintUsesLuminanceOfRGB) {
     for (bool spectral : {false, true}) {
         const SampledWavelengths wl = spectral ? SampledWavelengths::sampleVisible(0.37f, 8)
                                                : SampledWavelengths::rgb(defaultChannelWavelengths());
-        auto p1 = test::makeProps("principled", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
+        auto p1 = test::makeProps("disney", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
                                                  {"spec_tint", 1.0f}});
-        auto p0 = test::makeProps("principled", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
+        auto p0 = test::makeProps("disney", {{"base_color", RGBValue{rgb}}, {"roughness", r}, {"specular", 1.0f},
                                                  {"specular_tint", 0.0f}});
         auto t1 = test::makeBSDF(*p1, wl);
         auto t0 = test::makeBSDF(*p0, wl);
@@ -152,8 +152,8 @@ TEST(Principled, TexturedBaseColourTintInSpectralMode) {
         t->set("color1", RGBValue{c1}, SourceLocation{});
         return t;
     };
-    auto p1 = test::makeProps("principled", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 1.0f}});
-    auto p0 = test::makeProps("principled", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 0.0f}});
+    auto p1 = test::makeProps("disney", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 1.0f}});
+    auto p0 = test::makeProps("disney", {{"roughness", 0.5f}, {"specular", 1.0f}, {"spec_tint", 0.0f}});
     p1->set("base_color", makeTex(), SourceLocation{});
     p0->set("base_color", makeTex(), SourceLocation{});
     auto m1 = MaterialRegistry::instance().create(*p1);
@@ -179,7 +179,7 @@ TEST(Principled, TexturedBaseColourTintInSpectralMode) {
 TEST(PrincipledSampling, SpectralModeConsistency) {
     // Eight wavelengths of an RGB-upsampled base colour: sampling and eval/pdf must stay consistent
     // (the lobe probabilities average over the wavelengths).
-    auto p = test::makeProps("principled", {{"base_color", RGBValue{vec3(0.9f, 0.2f, 0.4f)}},
+    auto p = test::makeProps("disney", {{"base_color", RGBValue{vec3(0.9f, 0.2f, 0.4f)}},
                                             {"roughness", 0.4f},
                                             {"metallic", 0.5f},
                                             {"clearcoat", 0.7f},
@@ -204,7 +204,7 @@ TEST(PrincipledSampling, SpectralModeConsistency) {
 
 TEST(Principled, AnisotropyStretchesAlongTangent) {
     // anisotropic = 0.9: αx > αy, so the lobe is wider when wi leaves the mirror direction along x.
-    auto inst = makeBSDF("principled", {{"metallic", 1.0f}, {"roughness", 0.4f}, {"anisotropic", 0.9f}});
+    auto inst = makeBSDF("disney", {{"metallic", 1.0f}, {"roughness", 0.4f}, {"anisotropic", 0.9f}});
     const vec3 wo(0, 0, 1);
     const float off = 0.35f;
     const vec3 wx = glm::normalize(vec3(off, 0, 1)), wy = glm::normalize(vec3(0, off, 1));
@@ -212,10 +212,10 @@ TEST(Principled, AnisotropyStretchesAlongTangent) {
 }
 
 TEST(Principled, BadParametersThrow) {
-    EXPECT_THROW(makeBSDF("principled", {{"metallic", 1.5f}}), Error);
-    EXPECT_THROW(makeBSDF("principled", {{"roughness", -0.1f}}), Error);
-    EXPECT_THROW(makeBSDF("principled", {{"spec_tint", 0.5f}, {"specular_tint", 0.5f}}), Error);
-    EXPECT_THROW(makeBSDF("principled", {{"spec_trans", 0.5f}}), Error);  // not supported: unknown
+    EXPECT_THROW(makeBSDF("disney", {{"metallic", 1.5f}}), Error);
+    EXPECT_THROW(makeBSDF("disney", {{"roughness", -0.1f}}), Error);
+    EXPECT_THROW(makeBSDF("disney", {{"spec_tint", 0.5f}, {"specular_tint", 0.5f}}), Error);
+    EXPECT_THROW(makeBSDF("disney", {{"spec_trans", 0.5f}}), Error);  // not supported: unknown
 }
 
 struct PrincipledCase {
@@ -236,7 +236,7 @@ std::vector<PrincipledCase> principledCases() {
 }
 
 test::BSDFInstance makeCase(const PrincipledCase& k) {
-    return makeBSDF("principled", {{"base_color", RGBValue{vec3(0.8f, 0.45f, 0.2f)}},
+    return makeBSDF("disney", {{"base_color", RGBValue{vec3(0.8f, 0.45f, 0.2f)}},
                                    {"roughness", k.roughness},
                                    {"anisotropic", k.anisotropic},
                                    {"metallic", k.metallic},
@@ -286,7 +286,7 @@ TEST(PrincipledFurnace, MetalIsEnergyConserving) {
     // metallic = 1, base colour 1: F = 1, single-scattering GGX loses energy but never gains.
     for (float r : {0.1f, 0.3f, 0.6f, 1.0f})
         for (float aniso : {0.0f, 0.9f}) {
-            auto inst = makeBSDF("principled",
+            auto inst = makeBSDF("disney",
                                  {{"base_color", 1.0f}, {"metallic", 1.0f}, {"roughness", r}, {"anisotropic", aniso}});
             for (float c : {1.0f, 0.6f, 0.2f, 0.05f}) {
                 const auto a = test::albedo(*inst.bsdf, test::dirFromCos(c, 0.2f), 200000)[0];
@@ -304,7 +304,7 @@ TEST(PrincipledFurnace, MetalIsEnergyConserving) {
 TEST(PrincipledFurnace, AlbedosWithinTheirBounds) {
     const float coss[] = {1.0f, 0.7f, 0.4f, 0.2f, 0.05f};
     auto check = [&](const char* name, std::initializer_list<test::Param> params, double hi) {
-        auto inst = makeBSDF("principled", params);
+        auto inst = makeBSDF("disney", params);
         for (float c : coss) {
             const auto a = test::albedo(*inst.bsdf, test::dirFromCos(c, 0.2f), 200000)[0];
             EXPECT_GE(a.mean, 0.2) << name << " cos " << c;

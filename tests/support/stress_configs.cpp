@@ -203,21 +203,52 @@ MaterialStress proposed() {
         });
 }
 
-MaterialStress principled() {
-    auto pr = [] { return P("principled"); };
+/// The stress cases Disney 2012 and Mitsuba 3's principled share; `blend` names the diffuse /
+/// subsurface blend (Burley's `subsurface`, Mitsuba's `flatness`).
+std::vector<StressCase> principledCases(const char* type, const char* blend) {
+    auto pr = [type] { return P(type); };
+    return {
+        {"defaults", pr()},
+        {"white rough 1", pr().f("base_color", 1.0f).f("roughness", 1.0f)},
+        {"white rough 0 specular 1", pr().f("base_color", 1.0f).f("roughness", 0.0f).f("specular", 1.0f)},
+        {"metallic 1 rough 1e-4 aniso 1", pr().f("base_color", 1.0f).f("metallic", 1.0f).f("roughness", 1e-4f)
+                                              .f("anisotropic", 1.0f)},
+        {std::string("sheen 1 tint 1 ") + blend + " 1", pr().f("base_color", 1.0f).f("sheen", 1.0f).f("sheen_tint", 1.0f)
+                                                          .f(blend, 1.0f).f("roughness", 1.0f)},
+        {"clearcoat 1 gloss 1 everything max", pr().f("base_color", 1.0f).f("clearcoat", 1.0f).f("clearcoat_gloss", 1.0f)
+                                                   .f("sheen", 1.0f).f("specular", 1.0f).f("spec_tint", 1.0f)},
+        {"per-channel", pr().rgb("base_color", 1.0f, 0.0f, 0.5f).f("metallic", 0.5f).f("roughness", 0.3f)},
+    };
+}
+
+MaterialStress disney() {
     return nonConserving(
         10.0, "Disney 2012: Burley diffuse retro-reflection (F_D90 up to 2.5) and sheen are added, not energy-normalised",
+        principledCases("disney", "subsurface"));
+}
+
+MaterialStress principled() {
+    std::vector<StressCase> cases = principledCases("principled", "flatness");
+    cases.push_back({"spec_trans 1 rough 1e-4 eta 1.001", P("principled").f("base_color", 1.0f).f("spec_trans", 1.0f)
+                                                              .f("roughness", 1e-4f).f("eta", 1.001f)});
+    cases.push_back({"spec_trans 0.5 eta 3 rough 1", P("principled").f("base_color", 1.0f).f("spec_trans", 0.5f)
+                                                         .f("eta", 3.0f).f("roughness", 1.0f)});
+    return nonConserving(
+        10.0, "Mitsuba 3 principled: Burley diffuse retro-reflection, sheen and clearcoat are added, not energy-normalised",
+        std::move(cases));
+}
+
+MaterialStress principledthin() {
+    auto pr = [] { return P("principledthin"); };
+    return nonConserving(
+        10.0, "Mitsuba 3 principledthin: Burley diffuse retro-reflection and sheen are added, not energy-normalised",
         {
             {"defaults", pr()},
-            {"white rough 1 subsurface 0", pr().f("base_color", 1.0f).f("roughness", 1.0f)},
-            {"white rough 0 specular 1", pr().f("base_color", 1.0f).f("roughness", 0.0f).f("specular", 1.0f)},
-            {"metallic 1 rough 1e-4 aniso 1", pr().f("base_color", 1.0f).f("metallic", 1.0f).f("roughness", 1e-4f)
-                                                  .f("anisotropic", 1.0f)},
-            {"sheen 1 tint 1 subsurface 1", pr().f("base_color", 1.0f).f("sheen", 1.0f).f("sheen_tint", 1.0f)
-                                                .f("subsurface", 1.0f).f("roughness", 1.0f)},
-            {"clearcoat 1 gloss 1 everything max", pr().f("base_color", 1.0f).f("clearcoat", 1.0f).f("clearcoat_gloss", 1.0f)
-                                                       .f("sheen", 1.0f).f("specular", 1.0f).f("spec_tint", 1.0f)},
-            {"per-channel", pr().rgb("base_color", 1.0f, 0.0f, 0.5f).f("metallic", 0.5f).f("roughness", 0.3f)},
+            {"white spec_trans 1 rough 1e-4", pr().f("base_color", 1.0f).f("spec_trans", 1.0f).f("roughness", 1e-4f)},
+            {"diff_trans 2 rough 1", pr().f("base_color", 1.0f).f("diff_trans", 2.0f).f("roughness", 1.0f)},
+            {"everything max", pr().f("base_color", 1.0f).f("spec_trans", 0.5f).f("diff_trans", 1.0f).f("sheen", 1.0f)
+                                   .f("sheen_tint", 1.0f).f("flatness", 1.0f).f("spec_tint", 1.0f).f("eta", 3.0f)},
+            {"eta 0.5 aniso 1", pr().f("spec_trans", 0.7f).f("eta", 0.5f).f("anisotropic", 1.0f).f("roughness", 0.2f)},
         });
 }
 
@@ -352,7 +383,9 @@ const std::map<std::string, Builder>& table() {
         {"phong", phong},
         {"cook_torrance", cookTorrance},
         {"granier", granier},
+        {"disney", disney},
         {"principled", principled},
+        {"principledthin", principledthin},
         {"proposed", proposed},
         {"cloth", cloth},
         {"velvet", velvet},
