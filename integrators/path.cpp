@@ -9,7 +9,7 @@ namespace iris {
 PathIntegrator::PathIntegrator(std::string type, const PathParams& params, int maxDepth, int rrDepth)
     : Integrator(std::move(type), params.maxDepth), params_(params),
       maxDepth_(maxDepth < 0 ? std::numeric_limits<int>::max() : maxDepth), rrDepth_(rrDepth),
-      hideEmitters_(params.hideEmitters) {}
+      hideEmitters_(params.hideEmitters), discardNullOnlyPaths_(params.discardNullOnlyPaths) {}
 
 SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                                    PathStats& stats) const {
@@ -23,6 +23,10 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
     const auto& lights = scene.lights();
     const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
     ++stats.paths;
+    // Mitsuba 3's valid_ray (src/integrators/path.cpp): true from the start when an environment
+    // emitter is visible, else set at the first surface where the path does not pass straight
+    // through (a null lobe of `mask`/`null`); a path that never sets it returns 0.
+    bool validRay = !discardNullOnlyPaths_ || (!hideEmitters_ && !scene.infiniteLights().empty());
 
     // depth = number of path segments so far (the camera ray is segment 1).
     for (int depth = 1;; ++depth) {
@@ -44,6 +48,8 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
             break;
         }
         const SurfaceInteraction& si = *hit;
+        const bool validBefore = validRay;
+        validRay = true;  // undone below if the path passes straight through this surface
 
         // Emission from an area light that the path hit.
         if (si.areaLight && countEmission) {
@@ -112,8 +118,13 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         const vec2 u = sampler.get2D();
         const auto bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
         if (!bs || bs->pdf <= 0 || bs->f.isBlack()) break;
-        const vec3 wiWorld = glm::normalize(frame.toWorld(bs->wi));
-        if (glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
+        // A pass-through (null lobe, Mitsuba 3 src/bsdfs/mask.cpp, null.cpp) continues the ray
+        // unchanged: it counts as a path segment (Mitsuba 3 path.cpp increments depth at every
+        // valid intersection) and, being a delta lobe, the emitter it reaches gets MIS weight 1.
+        const bool passThrough = bs->isNull();
+        const vec3 wiWorld = passThrough ? glm::normalize(ray.d) : glm::normalize(frame.toWorld(bs->wi));
+        if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
+        if (passThrough) validRay = validBefore;
         beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;
@@ -131,7 +142,7 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         }
         arena.reset();
     }
-    return L;
+    return validRay ? L : SampledSpectrum(n, 0.0f);
 }
 
 namespace {
@@ -144,6 +155,7 @@ PathParams readPathParams(const Properties& p) {
     pp.rrDepth = p.getInt("rr_depth", 5);
     if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
     pp.hideEmitters = p.getBool("hide_emitters", false);
+    pp.discardNullOnlyPaths = p.formatVersion() != 0;
     // Mitsuba 0.6's strictNormals (default false) is accepted and has no effect: iris always
     // discards a sampled direction whose geometric and shading sides disagree (strict for wi).
     p.getBool("strict_normals", false);
