@@ -9,7 +9,7 @@ namespace iris {
 PathIntegrator::PathIntegrator(std::string type, const PathParams& params, int maxDepth, int rrDepth)
     : Integrator(std::move(type), params.maxDepth), params_(params),
       maxDepth_(maxDepth < 0 ? std::numeric_limits<int>::max() : maxDepth), rrDepth_(rrDepth),
-      hideEmitters_(params.hideEmitters), discardNullOnlyPaths_(params.discardNullOnlyPaths) {}
+      hideEmitters_(params.hideEmitters) {}
 
 SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                                    PathStats& stats) const {
@@ -23,10 +23,6 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
     const auto& lights = scene.lights();
     const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
     ++stats.paths;
-    // Mitsuba 3's valid_ray (src/integrators/path.cpp): true from the start when an environment
-    // emitter is visible, else set at the first surface where the path does not pass straight
-    // through (a null lobe of `mask`/`null`); a path that never sets it returns 0.
-    bool validRay = !discardNullOnlyPaths_ || (!hideEmitters_ && !scene.infiniteLights().empty());
 
     // depth = number of path segments so far (the camera ray is segment 1).
     for (int depth = 1;; ++depth) {
@@ -48,8 +44,6 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
             break;
         }
         const SurfaceInteraction& si = *hit;
-        const bool validBefore = validRay;
-        validRay = true;  // undone below if the path passes straight through this surface
 
         // Emission from an area light that the path hit.
         if (si.areaLight && countEmission) {
@@ -124,7 +118,6 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         const bool passThrough = bs->isNull();
         const vec3 wiWorld = passThrough ? glm::normalize(ray.d) : glm::normalize(frame.toWorld(bs->wi));
         if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
-        if (passThrough) validRay = validBefore;
         beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;
@@ -142,7 +135,7 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         }
         arena.reset();
     }
-    return validRay ? L : SampledSpectrum(n, 0.0f);
+    return L;
 }
 
 namespace {
@@ -155,7 +148,6 @@ PathParams readPathParams(const Properties& p) {
     pp.rrDepth = p.getInt("rr_depth", 5);
     if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
     pp.hideEmitters = p.getBool("hide_emitters", false);
-    pp.discardNullOnlyPaths = p.formatVersion() != 0;
     // Mitsuba 0.6's strictNormals (default false) is accepted and has no effect: iris always
     // discards a sampled direction whose geometric and shading sides disagree (strict for wi).
     p.getBool("strict_normals", false);

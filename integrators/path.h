@@ -13,10 +13,6 @@ struct PathParams {
     int maxDepth = -1;  // −1: unlimited (Russian roulette terminates)
     int rrDepth = 5;    // Russian roulette starts after this many segments
     bool hideEmitters = false;
-    /// Mitsuba 3's valid_ray (scene version 2.x/3.x): a path that reached no surface except
-    /// through pass-through (null) interactions, in a scene without an environment emitter (or
-    /// with hide_emitters), contributes nothing. Mitsuba 0.6 has no such rule.
-    bool discardNullOnlyPaths = true;
 };
 
 class PathIntegrator final : public Integrator {
@@ -31,7 +27,6 @@ private:
     PathParams params_;
     int maxDepth_, rrDepth_;
     bool hideEmitters_;
-    bool discardNullOnlyPaths_;
 };
 
 }  // namespace iris
