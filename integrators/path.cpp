@@ -112,8 +112,12 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         const vec2 u = sampler.get2D();
         const auto bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
         if (!bs || bs->pdf <= 0 || bs->f.isBlack()) break;
-        const vec3 wiWorld = glm::normalize(frame.toWorld(bs->wi));
-        if (glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
+        // A pass-through (null lobe, Mitsuba 3 src/bsdfs/mask.cpp, null.cpp) continues the ray
+        // unchanged: it counts as a path segment (Mitsuba 3 path.cpp increments depth at every
+        // valid intersection) and, being a delta lobe, the emitter it reaches gets MIS weight 1.
+        const bool passThrough = bs->isNull();
+        const vec3 wiWorld = passThrough ? glm::normalize(ray.d) : glm::normalize(frame.toWorld(bs->wi));
+        if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
         beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;

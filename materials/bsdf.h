@@ -27,6 +27,9 @@ enum BSDFFlags : uint32_t {
     kBSDFDiffuse = 1u << 2,
     kBSDFGlossy = 1u << 3,
     kBSDFSpecular = 1u << 4,
+    /// Pass-through (Mitsuba's Null lobe, of the `mask` and `null` bsdfs): wi = −wo, the ray goes
+    /// on unchanged. Sampled together with kBSDFTransmission | kBSDFSpecular (a delta lobe).
+    kBSDFNull = 1u << 5,
 };
 
 struct BSDFSample {
@@ -38,6 +41,7 @@ struct BSDFSample {
 
     bool isSpecular() const { return flags & kBSDFSpecular; }
     bool isTransmission() const { return flags & kBSDFTransmission; }
+    bool isNull() const { return flags & kBSDFNull; }
     /// Path throughput weight f·|cosθi|/pdf.
     SampledSpectrum weight() const { return pdf > 0 ? f * (std::abs(wi.z) / pdf) : SampledSpectrum(f.size()); }
 };

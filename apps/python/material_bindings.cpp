@@ -196,6 +196,7 @@ void bindMaterials(py::module_& m) {
     m.attr("BSDF_DIFFUSE") = uint32_t(kBSDFDiffuse);
     m.attr("BSDF_GLOSSY") = uint32_t(kBSDFGlossy);
     m.attr("BSDF_SPECULAR") = uint32_t(kBSDFSpecular);
+    m.attr("BSDF_NULL") = uint32_t(kBSDFNull);
 }
 
 }  // namespace iris::python

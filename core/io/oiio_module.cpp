@@ -70,7 +70,12 @@ IRIS_OIIO_EXPORT int iris_oiio_write_u8(const char* format_path, const char* out
 IRIS_OIIO_EXPORT void* iris_oiio_open(const char* path, iris_oiio_info* info, char* err, size_t errlen) {
     return guarded(err, errlen, "cannot read image", static_cast<void*>(nullptr), [&]() -> void* {
         auto image = std::make_unique<OpenImage>();
-        image->in = OIIO::ImageInput::open(path);
+        // Colour as stored, not multiplied by alpha (OpenImageIO associates alpha by default):
+        // Mitsuba reads PNG/TIFF colour unassociated and ignores alpha in textures (Mitsuba 3
+        // textures/bitmap.cpp converts with AlphaTransform::Empty), e.g. a grey + alpha opacity mask.
+        OIIO::ImageSpec config;
+        config.attribute("oiio:UnassociatedAlpha", 1);
+        image->in = OIIO::ImageInput::open(path, &config);
         if (!image->in) {
             std::string e = OIIO::geterror();
             if (e.empty()) e = "not a readable image";

@@ -8,11 +8,6 @@
 
 namespace iris {
 
-IRIS_HINT(MaterialRegistry, "null",
-          "iris has no invisible (null) surface; it marks medium boundaries in Mitsuba, and iris has no media: remove the shape, "
-          "or give it a dielectric with int_ior equal to ext_ior");
-IRIS_HINT(MaterialRegistry, "mask",
-          "iris has no opacity masks: cut the holes into the mesh, or drop the mask and keep its nested bsdf");
 IRIS_HINT(MaterialRegistry, "hair", "iris has no hair BSDF: use roughconductor or roughdielectric as an approximation");
 IRIS_HINT(LightRegistry, "projector", "iris has no projector emitter: use 'spot' (a cone of constant intensity)");
 IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a rendered sky image");

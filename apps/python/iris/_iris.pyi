@@ -12,6 +12,7 @@ BSDF_TRANSMISSION: int
 BSDF_DIFFUSE: int
 BSDF_GLOSSY: int
 BSDF_SPECULAR: int
+BSDF_NULL: int
 
 class Error(ValueError): ...
 

@@ -22,6 +22,7 @@ TRANSMISSION = _iris.BSDF_TRANSMISSION
 DIFFUSE = _iris.BSDF_DIFFUSE
 GLOSSY = _iris.BSDF_GLOSSY
 SPECULAR = _iris.BSDF_SPECULAR
+NULL = _iris.BSDF_NULL  # the pass-through of `mask` and `null` (with TRANSMISSION | SPECULAR)
 
 
 def material_types() -> list:

@@ -8,6 +8,7 @@ TRANSMISSION: int
 DIFFUSE: int
 GLOSSY: int
 SPECULAR: int
+NULL: int
 
 def material_types() -> list[str]: ...
 def texture_types() -> list[str]: ...
