@@ -102,6 +102,9 @@ Table tableOf(const SpectrumPtr& s) {
 ConductorIOR conductor(const char* material, int version) {
     Properties p = props("bsdf", "roughconductor", version);
     p.set("material", std::string(material), SourceLocation{"scene.xml", 4});
+    // Version 0.x divides η and κ by the exterior index (default air, 1.000277; Mitsuba 0.6's
+    // extEta): 1 here, so that the tables' own projection is seen.
+    if (version == 0) p.set("ext_eta", 1.0f, SourceLocation{"scene.xml", 5});
     return readConductor(p);
 }
 
