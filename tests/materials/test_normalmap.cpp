@@ -239,6 +239,25 @@ TEST(NormalMap, WrapperAlbedoAtMostNested) {
     }
 }
 
+TEST(NormalMap, NestedInAFlatBumpMapIsUnchanged) {
+    // A wrapper around a wrapper: the outer flat bump map (zero gradient: identity frame, G = 1)
+    // hands its frames to the inner normal map, whose value must be the same as on its own.
+    auto inner = tiltedDiffuse(30.0f, true, true);
+    auto tex = std::make_shared<Properties>("texture", "test_ramp", kLoc);
+    auto outer = std::make_shared<Properties>("bsdf", "bumpmap", kLoc);
+    outer->set("height", tex, kLoc);
+    const float a = 30.0f * kPi / 180.0f;
+    auto nm = normalMapProps(0.5f * vec3(std::sin(a), 0.0f, std::cos(a)) + 0.5f);
+    outer->addChild(nm);
+    auto both = test::makeBSDF(*outer, SampledWavelengths::rgb(defaultChannelWavelengths()));
+    for (const vec3& wo : {glm::normalize(vec3(0.2f, 0.1f, 1.0f)), glm::normalize(vec3(-0.95f, 0.1f, 0.15f))})
+        for (const vec3& wi : {glm::normalize(vec3(0.5f, -0.3f, 0.6f)), glm::normalize(vec3(-0.3f, 0.2f, 0.9f))}) {
+            const float e = inner.bsdf->eval(wo, wi, TransportMode::Radiance)[0];
+            EXPECT_NEAR(both.bsdf->eval(wo, wi, TransportMode::Radiance)[0], e, 1e-6f * (1 + e));
+            EXPECT_NEAR(both.bsdf->pdf(wo, wi, TransportMode::Radiance), inner.bsdf->pdf(wo, wi, TransportMode::Radiance), 1e-6f);
+        }
+}
+
 TEST(BumpMap, LinearRampTiltsByAtanOfScaledSlope) {
     for (float dpduLen : {1.0f, 2.5f})
         for (float slope : {0.2f, 1.0f, -3.0f})
