@@ -228,6 +228,23 @@ TEST(NormalMap, SilhouetteViewerBelowPerturbedNormalIsFlipped) {
     EXPECT_TRUE(chi.passed) << chi.message;
 }
 
+TEST(NormalMap, OptionsDefaultByVersion) {
+    // Version 2.x/3.x: Mitsuba 3 v3.7's flip and shadowing on; 0.x (Mitsuba 0.6): off. Seen at the
+    // silhouette configuration above: black without the flip.
+    const float a = 40.0f * kPi / 180.0f;
+    const vec3 wo = glm::normalize(vec3(-0.95f, 0.1f, 0.15f)), wi = glm::normalize(vec3(-0.3f, 0.2f, 0.9f));
+    for (int version : {0, 3}) {
+        auto p = normalMapProps(0.5f * vec3(std::sin(a), 0.0f, std::cos(a)) + 0.5f);
+        p->setFormatVersion(version);
+        auto inst = test::makeBSDF(*p, SampledWavelengths::rgb(defaultChannelWavelengths()));
+        const float f = inst.bsdf->eval(wo, wi, TransportMode::Radiance)[0];
+        if (version == 0)
+            EXPECT_EQ(f, 0.0f);
+        else
+            EXPECT_GT(f, 0.0f);
+    }
+}
+
 TEST(NormalMap, WrapperAlbedoAtMostNested) {
     // With the perturbation the diffuse albedo ∫ f |cos θi| dωi = ρ ∫ G |cos θi'|/π over the
     // directions above both horizons stays ≤ ρ (energy is lost, never gained), for any view.
