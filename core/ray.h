@@ -32,7 +32,13 @@ struct SurfaceInteraction {
     float t = 0.0f;      // ray distance
     vec3 ng{0, 0, 1};    // geometric normal (world, unit; oriented by the shape's winding / outside)
     vec3 ns{0, 0, 1};    // interpolated shading normal (world, unit)
-    vec3 dpdu{1, 0, 0};  // tangent along u
+    // The surface derivatives are dpScale·dpdu = ∂p/∂u and dpScale·dpdv = ∂p/∂v (meshes: from the
+    // triangle's uvs, dpScale = 1; spheres: Scene::intersect). dpdu also gives the shading frame's
+    // tangent; spheres store both divided by 2πr, so that frame is bit for bit that of earlier
+    // versions. Bump mapping needs the derivatives with their lengths.
+    vec3 dpdu{1, 0, 0};
+    vec3 dpdv{0, 1, 0};
+    float dpScale = 1.0f;
     vec2 uv{0.0f};
     vec3 wo{0.0f};       // direction towards the ray origin
     int shapeIndex = -1;

@@ -63,7 +63,8 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         sp.tex.uv = si.uv;
         sp.tex.p = si.p;
         sp.ng = si.ng;
-        sp.dpdu = si.dpdu;
+        sp.dpdu = si.dpScale * si.dpdu;
+        sp.dpdv = si.dpScale * si.dpdv;
         sp.shading = Frame::fromNormalTangent(si.ns, si.dpdu);
         const Frame frame = si.material->shadingFrame(sp);
         sp.shading = frame;

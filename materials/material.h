@@ -18,7 +18,8 @@ struct ShadingPoint {
     TextureQuery tex;       // uv and position for texture lookups
     Frame shading;          // shading frame (smooth normal, tangent from dp/du when available)
     vec3 ng{0, 0, 1};       // geometric normal (world)
-    vec3 dpdu{1, 0, 0};     // surface tangent along u (world), for anisotropy and normal maps
+    vec3 dpdu{1, 0, 0};     // ∂p/∂u (world), for anisotropy and bump maps
+    vec3 dpdv{0, 1, 0};     // ∂p/∂v (world), for bump maps
 };
 
 class Material {
@@ -33,6 +34,11 @@ public:
     /// Optional perturbation of the shading frame (normal / bump mapping, thesis' tilted n0).
     /// The default returns the frame unchanged.
     virtual Frame shadingFrame(const ShadingPoint& sp) const { return sp.shading; }
+
+    /// True when getBSDF depends on ShadingPoint::shading (the normal/bump-map wrappers, which
+    /// perturb it inside their BSDF; materials/perturbed_frame.h), so that a wrapper around such a
+    /// material hands it each frame it may use.
+    virtual bool perturbsShading() const { return false; }
 };
 
 using MaterialPtr = std::shared_ptr<const Material>;

@@ -52,6 +52,7 @@ public:
         return arena.make<TwoSidedBSDF>(f, b, wl.size());
     }
     Frame shadingFrame(const ShadingPoint& sp) const override { return front_->shadingFrame(sp); }
+    bool perturbsShading() const override { return front_->perturbsShading() || back_->perturbsShading(); }
 
 private:
     std::shared_ptr<Material> front_, back_;

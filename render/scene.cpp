@@ -149,11 +149,19 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
             uv2 = m.uvs[idx[2]];
         }
         si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
-        // dp/du from the uv parameterisation (pbrt-v4 §6.5.3), fallback to an edge.
+        // dp/du and dp/dv from the uv parameterisation (pbrt-v4 §6.5.3, the inverse of the 2×2 uv
+        // matrix: p_i − p_2 = (u_i − u_2) ∂p/∂u + (v_i − v_2) ∂p/∂v); for a degenerate uv mapping
+        // an edge and the tangent perpendicular to it.
         const vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
         const vec3 dp02 = p0 - p2, dp12 = p1 - p2;
         const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-        si.dpdu = std::abs(det) > 1e-12f ? (duv12.y * dp02 - duv02.y * dp12) / det : (p1 - p0);
+        if (std::abs(det) > 1e-12f) {
+            si.dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+            si.dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
+        } else {
+            si.dpdu = p1 - p0;
+            si.dpdv = glm::cross(si.ng, si.dpdu);
+        }
         if (!m.normals.empty() && !s.faceNormals) {
             vec3 n = b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]];
             const float len = glm::length(n);
@@ -170,8 +178,20 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
         const vec3 local = (si.p - s.center) / s.radius;
         const float phi = std::atan2(local.y, local.x);
         si.uv = vec2((phi < 0 ? phi + 2 * kPi : phi) * kInv2Pi, safeAcos(local.z) * kInvPi);
-        si.dpdu = vec3(-local.y, local.x, 0.0f);
-        if (glm::dot(si.dpdu, si.dpdu) < 1e-12f) si.dpdu = vec3(1, 0, 0);
+        // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
+        // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
+        // position (x, y, z) = (sin θ cos φ, sin θ sin φ, cos θ). At the poles (sin θ = 0) both
+        // degenerate; a tangent pair perpendicular to the axis is used instead.
+        // Stored divided by dpScale = 2πr (see SurfaceInteraction).
+        si.dpScale = 2 * kPi * s.radius;
+        const float rd = std::sqrt(local.x * local.x + local.y * local.y);
+        if (rd > 1e-6f) {
+            si.dpdu = vec3(-local.y, local.x, 0.0f);
+            si.dpdv = 0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd);
+        } else {
+            si.dpdu = vec3(1, 0, 0);
+            si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
+        }
     }
     return si;
 }

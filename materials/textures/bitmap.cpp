@@ -1,7 +1,10 @@
 #include "materials/textures/bitmap.h"
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
+#include <tuple>
 
 #include "core/xml/xml_values.h"
 
@@ -13,22 +16,34 @@ Bitmap::Bitmap(Image img) : img_(std::move(img)) {
         fail("bitmap: invalid image (", img_.width, "x", img_.height, "x", img_.channels, ")");
 }
 
-std::shared_ptr<const Bitmap> Bitmap::load(const std::string& path, bool raw) {
+std::shared_ptr<const Bitmap> Bitmap::load(const std::string& path, bool raw, bool fp16) {
     // Textures reading the same file (e.g. a colour and a roughness from one image) share it.
     static std::mutex mutex;
-    static std::map<std::pair<std::string, bool>, std::weak_ptr<const Bitmap>> cache;
-    const auto key = std::make_pair(path, raw);
+    static std::map<std::tuple<std::string, bool, bool>, std::weak_ptr<const Bitmap>> cache;
+    const auto key = std::make_tuple(path, raw, fp16);
     {
         std::lock_guard<std::mutex> lock(mutex);
         if (auto hit = cache[key].lock()) return hit;
     }
-    std::shared_ptr<const Bitmap> b = loadUncached(path, raw);
+    std::shared_ptr<const Bitmap> b = loadUncached(path, raw, fp16);
     std::lock_guard<std::mutex> lock(mutex);
     cache[key] = b;
     return b;
 }
 
-std::shared_ptr<const Bitmap> Bitmap::loadUncached(const std::string& path, bool raw) {
+float Bitmap::roundToHalf(float x) {
+    if (!std::isfinite(x) || x == 0.0f) return x;
+    const float a = std::abs(x);
+    int e = 0;
+    std::frexp(a, &e);  // a = m·2^e, m ∈ [0.5, 1): the leading bit has weight 2^(e−1)
+    // binary16: 10 fraction bits, normal exponents from −14; below that the spacing is 2^−24.
+    const float quantum = std::ldexp(1.0f, std::max(e - 11, -24));
+    float r = std::nearbyint(a / quantum) * quantum;  // exact scaling; nearbyint: ties to even
+    if (r > 65504.0f) r = std::numeric_limits<float>::infinity();
+    return std::copysign(r, x);
+}
+
+std::shared_ptr<const Bitmap> Bitmap::loadUncached(const std::string& path, bool raw, bool fp16) {
     ImageFileInfo info;
     Image img = readImage(path, &info);
     if (!raw) {
@@ -45,6 +60,8 @@ std::shared_ptr<const Bitmap> Bitmap::loadUncached(const std::string& path, bool
                 }
         }
     }
+    if (fp16)
+        for (float& v : img.pixels) v = roundToHalf(v);
     try {
         return std::make_shared<const Bitmap>(std::move(img));
     } catch (const Error& e) {
@@ -68,9 +85,7 @@ int Bitmap::wrap(int i, int n, Wrap w) const {
     return 0;
 }
 
-Bitmap::Footprint Bitmap::footprint(const vec2& uvIn, Filter f, Wrap w) const {
-    Footprint fp;
-    const int W = img_.width, H = img_.height;
+vec2 Bitmap::sanitise(const vec2& uvIn, Wrap w) {
     // Keep huge or non-finite coordinates from overflowing int conversions.
     vec2 uv = uvIn;
     for (int k = 0; k < 2; ++k) {
@@ -78,6 +93,13 @@ Bitmap::Footprint Bitmap::footprint(const vec2& uvIn, Filter f, Wrap w) const {
         if (w == Wrap::Repeat || w == Wrap::Mirror) uv[k] -= 2.0f * std::floor(uv[k] * 0.5f);  // periods of 1 and 2
         uv[k] = std::clamp(uv[k], -4.0f, 4.0f);
     }
+    return uv;
+}
+
+Bitmap::Footprint Bitmap::footprint(const vec2& uvIn, Filter f, Wrap w) const {
+    Footprint fp;
+    const int W = img_.width, H = img_.height;
+    const vec2 uv = sanitise(uvIn, w);
     const float x = uv.x * float(W), y = uv.y * float(H);
     if (f == Filter::Nearest) {
         const int xi = wrap(int(std::floor(x)), W, w), yi = wrap(int(std::floor(y)), H, w);
@@ -86,19 +108,39 @@ Bitmap::Footprint Bitmap::footprint(const vec2& uvIn, Filter f, Wrap w) const {
         fp.weight[0] = 1.0f;
         return fp;
     }
-    const float px = x - 0.5f, py = y - 0.5f;  // texel centres at half-integers
-    const float fx = std::floor(px), fy = std::floor(py);
-    const float tx = px - fx, ty = py - fy;
-    const int x0 = int(fx), y0 = int(fy);
-    const int xs[2] = {wrap(x0, W, w), wrap(x0 + 1, W, w)};
-    const int ys[2] = {wrap(y0, H, w), wrap(y0 + 1, H, w)};
+    const Cell c = bilinearCell(uv, w);
     fp.count = 4;
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-            fp.texel[j * 2 + i] = size_t(ys[j]) * size_t(W) + size_t(xs[i]);
-            fp.weight[j * 2 + i] = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
+            fp.texel[j * 2 + i] = size_t(c.ys[j]) * size_t(W) + size_t(c.xs[i]);
+            fp.weight[j * 2 + i] = (i ? c.tx : 1.0f - c.tx) * (j ? c.ty : 1.0f - c.ty);
         }
     return fp;
+}
+
+Bitmap::Cell Bitmap::bilinearCell(const vec2& uv, Wrap w) const {
+    const int W = img_.width, H = img_.height;
+    const float x = uv.x * float(W), y = uv.y * float(H);
+    const float px = x - 0.5f, py = y - 0.5f;  // texel centres at half-integers
+    const float fx = std::floor(px), fy = std::floor(py);
+    const int x0 = int(fx), y0 = int(fy);
+    return Cell{{wrap(x0, W, w), wrap(x0 + 1, W, w)}, {wrap(y0, H, w), wrap(y0 + 1, H, w)}, px - fx, py - fy};
+}
+
+float Bitmap::texelGrey(size_t t) const {
+    const vec3 c = texelRGB(t);
+    return img_.channels < 3 ? c.x : (c.x + c.y + c.z) / 3.0f;
+}
+
+vec2 Bitmap::gradientGrey(const vec2& uvIn, Filter f, Wrap w) const {
+    if (f == Filter::Nearest) return vec2(0.0f);
+    const Cell c = bilinearCell(sanitise(uvIn, w), w);
+    const size_t W = size_t(img_.width);
+    auto g = [&](int i, int j) { return texelGrey(size_t(c.ys[j]) * W + size_t(c.xs[i])); };
+    const float g00 = g(0, 0), g10 = g(1, 0), g01 = g(0, 1), g11 = g(1, 1);
+    const float dx = (1.0f - c.ty) * (g10 - g00) + c.ty * (g11 - g01);
+    const float dy = (1.0f - c.tx) * (g01 - g00) + c.tx * (g11 - g10);
+    return vec2(float(img_.width) * dx, float(img_.height) * dy);  // pixel → uv units
 }
 
 vec3 Bitmap::texelRGB(size_t t) const {

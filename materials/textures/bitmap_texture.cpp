@@ -1,6 +1,7 @@
 // The `bitmap` texture (Mitsuba): an image looked up at the surface uv. Parameters: filename,
 // raw (false: 8/16-bit images are sRGB-decoded), filter_type (bilinear | nearest), wrap_mode
-// (repeat | mirror | clamp), to_uv. As a spectrum texture in RGB mode it returns the filtered
+// (repeat | mirror | clamp), to_uv, format (auto | variant | fp16: storage precision), accel
+// (accepted, no effect). As a spectrum texture in RGB mode it returns the filtered
 // texel RGB unchanged; in spectral mode each texel's RGB is upsampled and the texels' spectra are
 // interpolated with the filter weights (as Mitsuba 3 does). Small images (at most
 // kMaxPerTexelFits texels) fit one sigmoid per texel, lazily on the first spectral lookup (≈ 34 µs
@@ -32,7 +33,21 @@ struct BitmapParams {
         const bool raw = p.getBool("raw", false);
         filter = Bitmap::parseFilter(p.getString("filter_type", "bilinear"), p.locationOf("filter_type"));
         wrap = Bitmap::parseWrap(p.getString("wrap_mode", "repeat"), p.locationOf("wrap_mode"));
-        bitmap = withLocation(p.locationOf("filename"), [&] { return Bitmap::load(file, raw); });
+        const bool fp16 = parseFormat(p);
+        p.getBool("accel", true);  // Mitsuba 3: CUDA hardware interpolation; no effect on the CPU
+        bitmap = withLocation(p.locationOf("filename"), [&] { return Bitmap::load(file, raw, fp16); });
+    }
+
+    /// Mitsuba 3's storage `format` (src/textures/bitmap.cpp): "auto" (default), "variant" or
+    /// "fp16"; true for fp16 (texels rounded to half precision). "auto" stores 8/16-bit images as
+    /// half in Mitsuba's RGB variants and as the variant's float in spectral ones; iris keeps
+    /// float (the render mode is not known when the scene loads; the rounding, a relative 2^-11 at
+    /// most, is far below the noise of a conformance render).
+    static bool parseFormat(const Properties& p) {
+        const std::string f = p.getString("format", "auto");
+        if (f == "auto" || f == "variant") return false;
+        if (f == "fp16") return true;
+        failAt(p.locationOf("format"), "bitmap: format '", f, "' is not supported (supported: auto, variant, fp16)");
     }
 };
 
@@ -79,6 +94,11 @@ public:
     explicit BitmapFloatTexture(const Properties& p) : params_(p), uv_(p) {}
     float eval(const TextureQuery& q) const override {
         return params_.bitmap->lookupGrey(uv_.apply(q.uv), params_.filter, params_.wrap);
+    }
+    /// The bilinear interpolant's exact derivative (Mitsuba 3 eval_1_grad), pulled back through
+    /// the uv transform: ∇_uv g = Jᵀ ∇_uv' g with J = ∂uv'/∂uv (chain rule).
+    vec2 gradient(const TextureQuery& q, float) const override {
+        return uv_.pullBack(params_.bitmap->gradientGrey(uv_.apply(q.uv), params_.filter, params_.wrap));
     }
 
 private:

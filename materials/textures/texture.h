@@ -20,6 +20,18 @@ class FloatTexture {
 public:
     virtual ~FloatTexture() = default;
     virtual float eval(const TextureQuery& q) const = 0;
+    /// (∂f/∂u, ∂f/∂v) at q.uv (Mitsuba 3's Texture::eval_1_grad, used by `bumpmap`). The default
+    /// takes central differences (f(u+δ) − f(u−δ))/(2δ) with uv step δ = `step`; textures that
+    /// know their derivative (bitmap: the bilinear interpolant's, constants: 0) override it.
+    virtual vec2 gradient(const TextureQuery& q, float step) const {
+        auto at = [&](float du, float dv) {
+            TextureQuery s = q;
+            s.uv += vec2(du, dv);
+            return eval(s);
+        };
+        const float inv = 0.5f / step;
+        return vec2((at(step, 0) - at(-step, 0)) * inv, (at(0, step) - at(0, -step)) * inv);
+    }
     /// True when eval does not depend on the query (lets materials precompute).
     virtual bool isConstant() const { return false; }
 };
@@ -43,6 +55,7 @@ class ConstantFloatTexture final : public FloatTexture {
 public:
     explicit ConstantFloatTexture(float v) : v_(v) {}
     float eval(const TextureQuery&) const override { return v_; }
+    vec2 gradient(const TextureQuery&, float) const override { return vec2(0.0f); }
     bool isConstant() const override { return true; }
     float value() const { return v_; }
 

@@ -22,6 +22,15 @@ struct UVTransform {
         if (identity) return uv;
         return vec2(m * vec4(uv, 0.0f, 1.0f)) * scale + offset;
     }
+    /// A gradient with respect to the transformed uv' as one with respect to uv: Jᵀ g, where
+    /// J = ∂uv'/∂uv = diag(scale) · (upper-left 2×2 of m) (Mitsuba 3 bitmap.cpp eval_1_grad
+    /// multiplies by the transposed to_uv matrix the same way).
+    vec2 pullBack(const vec2& g) const {
+        if (identity) return g;
+        const vec2 gs = g * scale;  // gradient wrt (m · uv).xy
+        // glm is column-major: m[c][r]; (Jᵀ g)_c = Σ_r m[c][r] gs_r.
+        return vec2(m[0][0] * gs.x + m[0][1] * gs.y, m[1][0] * gs.x + m[1][1] * gs.y);
+    }
 };
 
 }  // namespace iris
