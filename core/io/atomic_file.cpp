@@ -2,6 +2,7 @@
 #include "core/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -20,6 +21,16 @@ namespace {
 /// IRIS_FAULT_DISK_FULL_AFTER: bytes a write may put in one file before failing (-1 = no limit).
 long long injectedDiskSpace() {
     const char* v = std::getenv("IRIS_FAULT_DISK_FULL_AFTER");
+    if (!v || !*v) return -1;
+    char* end = nullptr;
+    const long long n = std::strtoll(v, &end, 10);
+    return (*end == '\0' && n >= 0) ? n : -1;
+}
+
+/// IRIS_FAULT_KILL_WRITING: bytes a write puts in its temporary before the process kills itself
+/// with SIGKILL (-1 = never), as a kill -9 in the middle of writing a checkpoint would.
+long long injectedKillPoint() {
+    const char* v = std::getenv("IRIS_FAULT_KILL_WRITING");
     if (!v || !*v) return -1;
     char* end = nullptr;
     const long long n = std::strtoll(v, &end, 10);
@@ -48,12 +59,14 @@ private:
 
 /// Write all of `bytes` to `fd` (EINTR and short writes retried).
 void writeAll(int fd, std::string_view bytes, const std::string& path) {
-    const long long space = injectedDiskSpace();
+    const long long space = injectedDiskSpace(), killAt = injectedKillPoint();
     size_t done = 0;
     while (done < bytes.size()) {
         if (space >= 0 && done >= size_t(space)) failErrno(path, "write failed", ENOSPC);
+        if (killAt >= 0 && done >= size_t(killAt)) ::raise(SIGKILL);
         size_t chunk = bytes.size() - done;
         if (space >= 0) chunk = std::min(chunk, size_t(space) - done);
+        if (killAt >= 0) chunk = std::min(chunk, size_t(killAt) - done);
         const ssize_t n = ::write(fd, bytes.data() + done, chunk);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) failErrno(path, "write failed", errno);

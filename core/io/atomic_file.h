@@ -7,7 +7,10 @@
 // discussion around rename-without-fsync).
 //
 // Fault injection for tests: IRIS_FAULT_DISK_FULL_AFTER=N makes every atomic write fail with
-// ENOSPC once its file would exceed N bytes, as a disk with N bytes free would (docs/testing.md).
+// ENOSPC once its file would exceed N bytes, as a disk with N bytes free would; and
+// IRIS_FAULT_KILL_WRITING=N makes a process writing through writeFileAtomically (checkpoints,
+// table caches, PNG) kill itself with SIGKILL once N bytes of the temporary are written, leaving
+// the temporary behind as a kill -9 would (docs/testing.md).
 #pragma once
 
 #include <functional>

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include "core/error.h"
 
@@ -28,8 +29,14 @@ std::string readName(std::istream& in, const std::string& path) {
     fail(path, ": corrupt EXR header: truncated attribute list");
 }
 
-constexpr uint64_t kMaxBlockLines = 256;         // the most scan lines one block holds (DWAB)
-constexpr uint64_t kMaxBlockBytes = uint64_t(1) << 30;
+constexpr uint64_t kMaxBufferBytes = uint64_t(1) << 30;
+
+/// Scan lines per block of OpenEXR's compression codes 0-9 (NONE, RLE, ZIPS, ZIP, PIZ, PXR24, B44,
+/// B44A, DWAA, DWAB; OpenEXR file layout, "Compression"); an unknown code counts as the largest.
+uint64_t linesPerBlock(int compression) {
+    static const uint64_t kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    return compression >= 0 && compression < int(std::size(kLines)) ? kLines[compression] : 256;
+}
 
 /// Value sizes of OpenEXR 3.1's fixed-size attribute types (ImfStandardAttributes, Imf*Attribute),
 /// which it reads whatever size the header declares; 0 for other types.
@@ -55,30 +62,50 @@ uint64_t skipChannelList(std::istream& in, const std::string& path) {
     return n;
 }
 
-/// The data window (box2i) must not exceed `maxPixels`, and one block of scan lines of all
-/// channels (at most 4 bytes each) must stay below 1 GB: OpenEXR allocates its decompression
-/// buffer from these before reading any pixel (a 700-byte file claimed 7667716 x 769 pixels,
-/// found by fuzz_image: tests/fuzz/corpus/image/oom-exr-data-window).
-void checkDataWindow(const std::string& box, uint64_t channels, uint64_t maxPixels, const std::string& path) {
+/// What one header says that sizes OpenEXR's buffers.
+struct BufferClaims {
+    uint64_t channels = 0;
+    int compression = 0;
+    std::string dataWindow;  // box2i: 16 bytes when present
+    uint32_t tileX = 0, tileY = 0;  // tiledesc "tiles", 0 for scan-line parts
+};
+
+/// OpenEXR allocates its compressor buffers when it opens a file, before it reads a pixel, from the
+/// header alone: for scan lines a block of linesPerBlock(compression) lines of the data window's
+/// width, whatever the window's height; for tiles one tile of the declared tile size. Each such
+/// buffer (at most 4 bytes a channel sample, and B44/PIZ keep a second buffer of twice that) must
+/// stay below 1 GB, and the data window below `maxPixels`. Found by fuzz_image: a 700-byte file
+/// claimed 7667716 x 769 pixels (tests/fuzz/corpus/image/oom-exr-data-window); a 659-byte file
+/// allocated a compressor block of many more lines than its window had (that input was lost; the
+/// corpus holds oom-exr-compressor-lines, a one-line window with PIZ's 32-line block, and
+/// oom-exr-tile-size, a 2^32-pixel tile).
+void checkBuffers(const BufferClaims& c, uint64_t maxPixels, const std::string& path) {
+    if (c.dataWindow.size() != 16) return;  // OpenEXR refuses a header without one
     int32_t b[4];
-    std::memcpy(b, box.data(), 16);
+    std::memcpy(b, c.dataWindow.data(), 16);
     const int64_t w = int64_t(b[2]) - b[0] + 1, h = int64_t(b[3]) - b[1] + 1;
     if (w <= 0 || h <= 0) fail(path, ": corrupt EXR header: empty data window");
     if (uint64_t(w) * uint64_t(h) > maxPixels)
         fail(path, ": image of ", w, "x", h, " pixels exceeds the limit of 2^", std::countr_zero(maxPixels), " pixels");
-    if (uint64_t(w) * std::min<uint64_t>(uint64_t(h), kMaxBlockLines) * std::max<uint64_t>(channels, 1) * 4 > kMaxBlockBytes)
-        fail(path, ": EXR data window ", w, "x", h, " with ", channels, " channels needs more than 1 GB per block");
+    const uint64_t sampleBytes = std::max<uint64_t>(c.channels, 1) * 4 * 2;  // 4 bytes, twice (see above)
+    if (c.tileX > 0 || c.tileY > 0) {
+        if (uint64_t(c.tileX) * uint64_t(c.tileY) * sampleBytes > kMaxBufferBytes)
+            fail(path, ": EXR tiles of ", c.tileX, "x", c.tileY, " pixels with ", c.channels, " channels need more than 1 GB per tile");
+        return;
+    }
+    if (uint64_t(w) * linesPerBlock(c.compression) * sampleBytes > kMaxBufferBytes)
+        fail(path, ": EXR data window ", w, "x", h, " with ", c.channels, " channels needs more than 1 GB per block of ",
+             linesPerBlock(c.compression), " scan lines");
 }
 
 /// Skip one header's attributes; false if the header is empty (the end of a multi-part list).
 bool skipHeader(std::istream& in, uint64_t fileSize, uint64_t maxPixels, const std::string& path) {
     bool any = false;
-    uint64_t channels = 0;
-    std::string dataWindow;
+    BufferClaims claims;
     for (;;) {
         const std::string name = readName(in, path);
         if (name.empty()) {
-            if (dataWindow.size() == 16) checkDataWindow(dataWindow, channels, maxPixels, path);
+            checkBuffers(claims, maxPixels, path);
             return any;
         }
         any = true;
@@ -91,7 +118,7 @@ bool skipHeader(std::istream& in, uint64_t fileSize, uint64_t maxPixels, const s
         const uint64_t at = uint64_t(in.tellg());
         if (type == "chlist") {
             // OpenEXR reads a channel list up to its terminator, whatever the declared size.
-            channels = skipChannelList(in, path);
+            claims.channels = skipChannelList(in, path);
         } else if (type == "preview") {
             // OpenEXR allocates width * height * 4 bytes for a preview image.
             uint32_t wh[2] = {0, 0};
@@ -103,8 +130,16 @@ bool skipHeader(std::istream& in, uint64_t fileSize, uint64_t maxPixels, const s
             // OpenEXR reads a fixed-size value's own size, whatever the declared size.
             if (uint64_t(fixed) > left) fail(path, ": corrupt EXR header: truncated attribute '", name, "'");
             if (name == "dataWindow" && type == "box2i") {
-                dataWindow.resize(16);
-                in.read(dataWindow.data(), 16);
+                claims.dataWindow.resize(16);
+                in.read(claims.dataWindow.data(), 16);
+            } else if (name == "compression" && type == "compression") {
+                claims.compression = in.get();
+            } else if (name == "tiles" && type == "tiledesc") {
+                uint32_t xy[2] = {0, 0};
+                in.read(reinterpret_cast<char*>(xy), 8);
+                in.seekg(1, std::ios::cur);  // level and rounding mode
+                claims.tileX = xy[0];
+                claims.tileY = xy[1];
             } else {
                 in.seekg(fixed, std::ios::cur);
             }

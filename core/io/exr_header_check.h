@@ -16,9 +16,10 @@ namespace iris {
 bool hasExrMagic(const std::string& path);
 
 /// Throws iris::Error "path: corrupt EXR header: ..." if an attribute name is unterminated or an
-/// attribute claims more bytes than the file has left, and "path: EXR data window ..." if a data
-/// window exceeds `maxPixels` (a power of two) or one block of its scan lines would exceed 1 GB. Files without
-/// the EXR magic pass.
+/// attribute claims more bytes than the file has left, "path: image of ... exceeds the limit" if a
+/// data window exceeds `maxPixels` (a power of two), and "path: EXR data window ..." / "path: EXR
+/// tiles ..." if a buffer OpenEXR allocates on opening (one block of scan lines of the compression,
+/// or one tile) would exceed 1 GB. Files without the EXR magic pass.
 void checkExrHeaderSizes(const std::string& path, uint64_t maxPixels);
 
 }  // namespace iris

@@ -62,7 +62,8 @@ def _readable_copy(src: Path, cache: Path) -> Path:
     return dst
 
 
-def _rgb(path: Path) -> np.ndarray:
+def rgb_channels(path: Path) -> np.ndarray:
+    """The R, G, B channels of an EXR file as float64, in that order."""
     pixels, names, _ = read_exr(str(path))
     index = {n: i for i, n in enumerate(names)}
     if not all(c in index for c in "RGB"):
@@ -81,6 +82,6 @@ def reference(name: str, mode: str, cache: Path, scene_dir: Path = SCENE_DIR):
     for f in (mean_file, var_file):
         if not f.exists():
             raise ExperimentError(f"{f}: reference missing")
-    mean = to_xyz(_rgb(_readable_copy(mean_file, cache)))
-    var = np.maximum(to_xyz(_rgb(_readable_copy(var_file, cache))), 0.0)
+    mean = to_xyz(rgb_channels(_readable_copy(mean_file, cache)))
+    var = np.maximum(to_xyz(rgb_channels(_readable_copy(var_file, cache))), 0.0)
     return mean, var

@@ -62,14 +62,9 @@ def render(render_exe: Path, scene: Path, mode: str, spp: int, seed: int, out: P
     if proc.returncode != 0:
         lines = [l for l in proc.stderr.strip().splitlines() if l.strip()]
         raise RuntimeError((lines[-1] if lines else f"exit {proc.returncode}").removeprefix("render: error: "))
-    mean = _xyz(image) if mode != "rgb" else mitsuba_refs.to_xyz(_rgb_channels(image))
+    mean = _xyz(image) if mode != "rgb" else mitsuba_refs.to_xyz(mitsuba_refs.rgb_channels(image))
     variance = _xyz(var)
     return mean, variance, int(read_exr_metadata(str(image)).get("iris.spp", spp))
-
-
-def _rgb_channels(path: Path) -> np.ndarray:
-    pixels, names, _ = read_exr(str(path))
-    return pixels[:, :, [names.index(c) for c in ("R", "G", "B")]].astype(np.float64)
 
 
 def _xyz(path: Path) -> np.ndarray:

@@ -58,12 +58,15 @@ void forEachAverageWeight(const EnvmapAxis& axis, double t0, double t1, Visit&& 
 struct EnvmapLattice {
     EnvmapAxis u, v;
     int cellsV = 1;  // rows of the piecewise-constant sampling grid (its columns: u.texels)
+    // Spectral mode: Mitsuba 3 (eval_spectrum) interpolates the normalised spectra and the scales
+    // separately and multiplies them; Mitsuba 0.6 interpolates the spectra themselves.
+    bool separateScale = false;
 
     static EnvmapLattice mitsuba06(int w, int h) {
-        return {{w, float(w), 0.5f, true}, {h, float(h), 0.5f, false}, h};
+        return {{w, float(w), 0.5f, true}, {h, float(h), 0.5f, false}, h, false};
     }
     static EnvmapLattice mitsuba3(int w, int h) {
-        return {{w, float(w), 0.5f, true}, {h, float(h - 1), 0.0f, false}, h - 1};
+        return {{w, float(w), 0.5f, true}, {h, float(h - 1), 0.0f, false}, h - 1, true};
     }
 };
 

@@ -32,8 +32,8 @@ constexpr int kGrid = 17;
 
 class EnvMapLight final : public Light {
 public:
-    EnvMapLight(Image img, const EnvmapLattice& lattice, bool separateScale, const mat4& toWorld, float scale, std::string name)
-        : img_(std::move(img)), lattice_(lattice), separateScale_(separateScale), toWorld_(toWorld), toLocal_(glm::inverse(mat3(toWorld))), scale_(scale), name_(std::move(name)) {
+    EnvMapLight(Image img, const EnvmapLattice& lattice, const mat4& toWorld, float scale, std::string name)
+        : img_(std::move(img)), lattice_(lattice), toWorld_(toWorld), toLocal_(glm::inverse(mat3(toWorld))), scale_(scale), name_(std::move(name)) {
         const int w = img_.width, h = img_.height;
         rgb_.resize(size_t(w) * h);
         std::vector<float> luminance(size_t(w) * h);
@@ -145,11 +145,11 @@ private:
             const vec3& c = rgb_[t.index[k]];
             const float m = std::max({c.x, c.y, c.z});
             if (m <= 0) continue;
-            addChromaticityShape(c / m, t.weight[k] * (separateScale_ ? 1.0f : m), wl, acc);
+            addChromaticityShape(c / m, t.weight[k] * (lattice_.separateScale ? 1.0f : m), wl, acc);
             scale += t.weight[k] * m;
         }
         if (scale <= 0) return s;
-        const float common = d65Factor_ * (separateScale_ ? scale : 1.0f);
+        const float common = d65Factor_ * (lattice_.separateScale ? scale : 1.0f);
         const float* d65 = wl.d65Lanes();  // cie::d65 at the path's wavelengths, computed at sampling
         for (int i = 0; i < n; ++i) s[i] = acc[i] * (common * d65[i]);
         return s;
@@ -206,7 +206,6 @@ private:
 
     Image img_;  // size only (pixels released after construction)
     EnvmapLattice lattice_;
-    bool separateScale_;  // Mitsuba 3: interpolate normalised spectra and scales separately
     std::vector<vec3> rgb_;
     mat4 toWorld_;
     mat3 toLocal_;
@@ -231,7 +230,7 @@ std::shared_ptr<Light> createEnvMap(const Properties& p) {
     const float scale = p.getFloat("scale", 1.0f);
     if (!(scale >= 0) || !std::isfinite(scale)) failAt(p.locationOf("scale"), "envmap scale must be a finite value >= 0");
     const EnvmapLattice lattice = mitsuba3 ? EnvmapLattice::mitsuba3(img.width, img.height) : EnvmapLattice::mitsuba06(img.width, img.height);
-    return std::make_shared<EnvMapLight>(std::move(img), lattice, mitsuba3, p.getTransform("to_world"), scale, file);
+    return std::make_shared<EnvMapLight>(std::move(img), lattice, p.getTransform("to_world"), scale, file);
 }
 
 }  // namespace

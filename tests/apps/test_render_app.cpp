@@ -160,6 +160,40 @@ TEST(RenderApp, InterruptedRenderResumesToTheUninterruptedImage) {
     EXPECT_NE(cutFile.stderrText.find("truncated"), std::string::npos) << cutFile.stderrText;
 }
 
+// kill -9 in the middle of a checkpoint write (core/io/atomic_file.h's IRIS_FAULT_KILL_WRITING hook,
+// no timing): the previous checkpoint stays byte-identical and resumes to the uninterrupted image.
+TEST(RenderApp, SigkillDuringCheckpointWriteKeepsThePreviousCheckpoint) {
+    const std::string scene = tempPath("kill.xml"), ref = tempPath("kill_ref.exr"), out = tempPath("kill_out.exr"),
+                      ckpt = tempPath("kill.ckpt");
+    writeTextFile(scene, kSmallScene);
+    const std::string common = " " + scene + " --spp 4 --seed 5 --quiet --no-png --threads 2";
+    ASSERT_EQ(runCommand(appPath("render") + common + " -o " + ref).exitCode, 0);
+    std::filesystem::remove(ckpt);
+    ASSERT_EQ(runCommand("IRIS_TEST_SIGNAL_AFTER_TILES=10 " + appPath("render") + common + " -o " + out + " --checkpoint " + ckpt).exitCode, 130);
+    const std::string before = fileBytes(ckpt);
+    ASSERT_GT(before.size(), 1000u);
+
+    // The resumed render finishes and is killed 1000 bytes into writing its final checkpoint.
+    const RunResult killed = runCommand("IRIS_FAULT_KILL_WRITING=1000 " + appPath("render") + common + " -o " + out +
+                                        " --checkpoint " + ckpt + " --resume");
+    EXPECT_NE(killed.exitCode, 0);
+    EXPECT_NE(killed.exitCode, 1) << killed.stderrText;  // killed, not an error exit
+    EXPECT_EQ(fileBytes(ckpt), before);
+    // The killed write really was half done: its temporary holds exactly the 1000 bytes.
+    int temporaries = 0;
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(ckpt).parent_path()))
+        if (e.path().string().rfind(ckpt + ".tmp-", 0) == 0) {
+            ++temporaries;
+            EXPECT_EQ(std::filesystem::file_size(e.path()), 1000u);
+            std::filesystem::remove(e.path());
+        }
+    EXPECT_EQ(temporaries, 1);
+
+    const RunResult resumed = runCommand(appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + " --resume");
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.stderrText;
+    EXPECT_EQ(readImage(out).pixels, readImage(ref).pixels);
+}
+
 TEST(RenderApp, FailedOutputWriteKeepsThePreviousImage) {
     const std::string scene = tempPath("full.xml"), out = tempPath("full.exr");
     writeTextFile(scene, kSmallScene);

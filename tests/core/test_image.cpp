@@ -157,9 +157,10 @@ TEST_F(ImageIO, TextFileNamedExrThrowsNamingPath) {
 
 namespace {
 
-/// Bytes of an uncompressed scanline EXR header claiming w x h FLOAT "Y" pixels, with a valid-looking
-/// offset table but no pixel data (OpenEXR file layout, openexr.com).
-std::string hugeExrHeader(int w, int h) {
+/// Bytes of an EXR header claiming w x h FLOAT "Y" pixels with the given compression code (0: none,
+/// 4: PIZ) and, when tileX > 0, tiles of tileX x tileY pixels, with a valid-looking offset table but
+/// no pixel data (OpenEXR file layout, openexr.com).
+std::string hugeExrHeader(int w, int h, char compression = 0, int tileX = 0, int tileY = 0) {
     std::string s;
     auto i32 = [&](int32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); };
     auto attr = [&](const std::string& name, const std::string& type, const std::string& value) {
@@ -173,15 +174,16 @@ std::string hugeExrHeader(int w, int h) {
         return out;
     };
     i32(20000630);
-    i32(2);
+    i32(tileX > 0 ? 2 | 0x200 : 2);  // version 2; flag 0x200: single-part tiled
     attr("channels", "chlist", std::string("Y\0", 2) + ints({2}) + std::string(4, '\0') + ints({1, 1}) + std::string(1, '\0'));
-    attr("compression", "compression", std::string(1, '\0'));
+    attr("compression", "compression", std::string(1, compression));
     attr("dataWindow", "box2i", ints({0, 0, w - 1, h - 1}));
     attr("displayWindow", "box2i", ints({0, 0, w - 1, h - 1}));
     attr("lineOrder", "lineOrder", std::string(1, '\0'));
     attr("pixelAspectRatio", "float", ints({0x3f800000}));
     attr("screenWindowCenter", "v2f", ints({0, 0}));
     attr("screenWindowWidth", "float", ints({0x3f800000}));
+    if (tileX > 0) attr("tiles", "tiledesc", ints({tileX, tileY}) + std::string(1, '\0'));
     s += '\0';
     const uint64_t end = s.size() + 8ull * uint64_t(h);
     for (int y = 0; y < h; ++y) s.append(reinterpret_cast<const char*>(&end), 8);
@@ -201,6 +203,37 @@ TEST_F(ImageIO, AbsurdSizeIsRefusedBeforeAllocating) {
         EXPECT_NE(msg.find(p), std::string::npos) << msg;
         EXPECT_NE(msg.find("2^28"), std::string::npos) << msg;
     }
+}
+
+/// Expect readImage(p) to fail with an iris::Error naming p and containing `what`.
+void expectRefusal(const std::string& p, const std::string& what) {
+    try {
+        readImage(p);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(p), std::string::npos) << msg;
+        EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
+}
+
+// OpenEXR sizes its decompression buffer from the compression's block of scan lines, whatever the
+// data window's height: a one-line window 2^25 pixels wide is a 4 GB PIZ block (32 lines) but a
+// 128 MB uncompressed one. Found by fuzz_image (tests/fuzz/corpus/image/oom-exr-compressor-lines).
+TEST_F(ImageIO, ExrCompressorBlockIsRefusedBeforeAllocating) {
+    const std::string piz = file("piz.exr");
+    std::ofstream(piz, std::ios::binary) << hugeExrHeader(1 << 25, 1, 4);
+    expectRefusal(piz, "needs more than 1 GB per block of 32 scan lines");
+    // The same window uncompressed passes the check and fails only for want of pixel data.
+    const std::string none = file("none.exr");
+    std::ofstream(none, std::ios::binary) << hugeExrHeader(1 << 25, 1, 0);
+    expectRefusal(none, "cannot read");
+}
+
+TEST_F(ImageIO, ExrTileClaimIsRefusedBeforeAllocating) {
+    const std::string p = file("tiles.exr");
+    std::ofstream(p, std::ios::binary) << hugeExrHeader(4, 4, 0, 1 << 16, 1 << 16);  // a 2^32-pixel tile
+    expectRefusal(p, "need more than 1 GB per tile");
 }
 
 TEST_F(ImageIO, JpegDropsAlpha) {

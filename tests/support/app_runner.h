@@ -31,13 +31,19 @@ struct RunResult {
     std::string stdoutText, stderrText;
 };
 
-/// The whole content of a file ("" if it cannot be read), which is then removed.
-inline std::string takeFile(const std::string& path) {
-    std::ifstream f(path);
+/// The whole content of a file, byte for byte ("" if it cannot be read).
+inline std::string fileBytes(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
     std::stringstream ss;
     ss << f.rdbuf();
-    std::remove(path.c_str());
     return ss.str();
+}
+
+/// The whole content of a file ("" if it cannot be read), which is then removed.
+inline std::string takeFile(const std::string& path) {
+    std::string s = fileBytes(path);
+    std::remove(path.c_str());
+    return s;
 }
 
 /// Run a shell command line, capturing its stdout and stderr.
