@@ -18,24 +18,21 @@ namespace iris {
 
 namespace {
 
-/// IRIS_FAULT_DISK_FULL_AFTER: bytes a write may put in one file before failing (-1 = no limit).
-long long injectedDiskSpace() {
-    const char* v = std::getenv("IRIS_FAULT_DISK_FULL_AFTER");
+/// A non-negative byte count from the environment variable `name` (-1 if unset or malformed).
+long long envBytes(const char* name) {
+    const char* v = std::getenv(name);
     if (!v || !*v) return -1;
     char* end = nullptr;
     const long long n = std::strtoll(v, &end, 10);
     return (*end == '\0' && n >= 0) ? n : -1;
 }
 
+/// IRIS_FAULT_DISK_FULL_AFTER: bytes a write may put in one file before failing (-1 = no limit).
+long long injectedDiskSpace() { return envBytes("IRIS_FAULT_DISK_FULL_AFTER"); }
+
 /// IRIS_FAULT_KILL_WRITING: bytes a write puts in its temporary before the process kills itself
 /// with SIGKILL (-1 = never), as a kill -9 in the middle of writing a checkpoint would.
-long long injectedKillPoint() {
-    const char* v = std::getenv("IRIS_FAULT_KILL_WRITING");
-    if (!v || !*v) return -1;
-    char* end = nullptr;
-    const long long n = std::strtoll(v, &end, 10);
-    return (*end == '\0' && n >= 0) ? n : -1;
-}
+long long injectedKillPoint() { return envBytes("IRIS_FAULT_KILL_WRITING"); }
 
 [[noreturn]] void failErrno(const std::string& path, const char* what, int err) {
     fail(path, ": ", what, ": ", std::strerror(err));

@@ -127,20 +127,36 @@ TEST(RenderApp, SigtermMidPassKeepsEveryFinishedTile) {
     EXPECT_NE(bad.stderrText.find("IRIS_TEST_SIGNAL_AFTER_TILES"), std::string::npos) << bad.stderrText;
 }
 
+namespace {
+
+/// The setting of the resume tests: a small scene rendered uninterrupted (`ref`), and the same
+/// render interrupted in the middle of pass 3 with a checkpoint that keeps the two finished passes.
+struct InterruptedRender {
+    std::string scene, ref, out, ckpt, common;
+    explicit InterruptedRender(const std::string& name)
+        : scene(tempPath(name + ".xml")), ref(tempPath(name + "_ref.exr")), out(tempPath(name + "_out.exr")), ckpt(tempPath(name + ".ckpt")) {
+        writeTextFile(scene, kSmallScene);
+        common = " " + scene + " --spp 4 --seed 5 --quiet --no-png --threads 2";
+        EXPECT_EQ(runCommand(appPath("render") + common + " -o " + ref).exitCode, 0);
+        std::filesystem::remove(ckpt);
+        const RunResult cut = run("IRIS_TEST_SIGNAL_AFTER_TILES=10", false);
+        EXPECT_EQ(cut.exitCode, 130) << cut.stderrText;
+    }
+    /// `render` with the environment assignments `env`, writing `out` and keeping `ckpt`.
+    RunResult run(const std::string& env, bool resume) const {
+        return runCommand(env + " " + appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + (resume ? " --resume" : ""));
+    }
+};
+
+}  // namespace
+
 TEST(RenderApp, InterruptedRenderResumesToTheUninterruptedImage) {
-    const std::string scene = tempPath("resume.xml"), ref = tempPath("resume_ref.exr"), out = tempPath("resume_out.exr"),
-                      ckpt = tempPath("resume.ckpt");
-    writeTextFile(scene, kSmallScene);
-    const std::string common = " " + scene + " --spp 4 --seed 5 --quiet --no-png --threads 2";
-    ASSERT_EQ(runCommand(appPath("render") + common + " -o " + ref).exitCode, 0);
-    // Interrupted in the middle of pass 3: the checkpoint keeps the two finished passes.
-    std::filesystem::remove(ckpt);
-    const RunResult cut = runCommand("IRIS_TEST_SIGNAL_AFTER_TILES=10 " + appPath("render") + common + " -o " + out +
-                                     " --checkpoint " + ckpt);
-    ASSERT_EQ(cut.exitCode, 130) << cut.stderrText;
-    const RunResult resumed = runCommand(appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + " --resume");
+    const InterruptedRender r("resume");
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    const std::string &out = r.out, &ckpt = r.ckpt;
+    const RunResult resumed = r.run("", true);
     ASSERT_EQ(resumed.exitCode, 0) << resumed.stderrText;
-    EXPECT_EQ(readImage(out).pixels, readImage(ref).pixels);
+    EXPECT_EQ(readImage(out).pixels, readImage(r.ref).pixels);
 
     // A corrupted checkpoint is refused (exit 1, one clear line), never resumed from.
     {
@@ -149,13 +165,13 @@ TEST(RenderApp, InterruptedRenderResumesToTheUninterruptedImage) {
         f.put('\x7f');
     }
     std::filesystem::remove(out);
-    const RunResult bad = runCommand(appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + " --resume");
+    const RunResult bad = r.run("", true);
     EXPECT_EQ(bad.exitCode, 1);
     EXPECT_NE(bad.stderrText.find(ckpt + ": checkpoint is corrupted"), std::string::npos) << bad.stderrText;
     EXPECT_FALSE(std::filesystem::exists(out));
     // ... and so is a truncated one.
     std::filesystem::resize_file(ckpt, 100);
-    const RunResult cutFile = runCommand(appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + " --resume");
+    const RunResult cutFile = r.run("", true);
     EXPECT_EQ(cutFile.exitCode, 1);
     EXPECT_NE(cutFile.stderrText.find("truncated"), std::string::npos) << cutFile.stderrText;
 }
@@ -163,19 +179,14 @@ TEST(RenderApp, InterruptedRenderResumesToTheUninterruptedImage) {
 // kill -9 in the middle of a checkpoint write (core/io/atomic_file.h's IRIS_FAULT_KILL_WRITING hook,
 // no timing): the previous checkpoint stays byte-identical and resumes to the uninterrupted image.
 TEST(RenderApp, SigkillDuringCheckpointWriteKeepsThePreviousCheckpoint) {
-    const std::string scene = tempPath("kill.xml"), ref = tempPath("kill_ref.exr"), out = tempPath("kill_out.exr"),
-                      ckpt = tempPath("kill.ckpt");
-    writeTextFile(scene, kSmallScene);
-    const std::string common = " " + scene + " --spp 4 --seed 5 --quiet --no-png --threads 2";
-    ASSERT_EQ(runCommand(appPath("render") + common + " -o " + ref).exitCode, 0);
-    std::filesystem::remove(ckpt);
-    ASSERT_EQ(runCommand("IRIS_TEST_SIGNAL_AFTER_TILES=10 " + appPath("render") + common + " -o " + out + " --checkpoint " + ckpt).exitCode, 130);
+    const InterruptedRender r("kill");
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    const std::string& ckpt = r.ckpt;
     const std::string before = fileBytes(ckpt);
     ASSERT_GT(before.size(), 1000u);
 
     // The resumed render finishes and is killed 1000 bytes into writing its final checkpoint.
-    const RunResult killed = runCommand("IRIS_FAULT_KILL_WRITING=1000 " + appPath("render") + common + " -o " + out +
-                                        " --checkpoint " + ckpt + " --resume");
+    const RunResult killed = r.run("IRIS_FAULT_KILL_WRITING=1000", true);
     EXPECT_NE(killed.exitCode, 0);
     EXPECT_NE(killed.exitCode, 1) << killed.stderrText;  // killed, not an error exit
     EXPECT_EQ(fileBytes(ckpt), before);
@@ -189,9 +200,9 @@ TEST(RenderApp, SigkillDuringCheckpointWriteKeepsThePreviousCheckpoint) {
         }
     EXPECT_EQ(temporaries, 1);
 
-    const RunResult resumed = runCommand(appPath("render") + common + " -o " + out + " --checkpoint " + ckpt + " --resume");
+    const RunResult resumed = r.run("", true);
     ASSERT_EQ(resumed.exitCode, 0) << resumed.stderrText;
-    EXPECT_EQ(readImage(out).pixels, readImage(ref).pixels);
+    EXPECT_EQ(readImage(r.out).pixels, readImage(r.ref).pixels);
 }
 
 TEST(RenderApp, FailedOutputWriteKeepsThePreviousImage) {

@@ -190,21 +190,6 @@ std::string hugeExrHeader(int w, int h, char compression = 0, int tileX = 0, int
     return s;
 }
 
-}  // namespace
-
-TEST_F(ImageIO, AbsurdSizeIsRefusedBeforeAllocating) {
-    const std::string p = file("huge.exr");
-    std::ofstream(p, std::ios::binary) << hugeExrHeader(20000, 20000);  // 4e8 > 2^28 pixels
-    try {
-        readImage(p);
-        ADD_FAILURE() << "no error";
-    } catch (const Error& e) {
-        const std::string msg = e.what();
-        EXPECT_NE(msg.find(p), std::string::npos) << msg;
-        EXPECT_NE(msg.find("2^28"), std::string::npos) << msg;
-    }
-}
-
 /// Expect readImage(p) to fail with an iris::Error naming p and containing `what`.
 void expectRefusal(const std::string& p, const std::string& what) {
     try {
@@ -215,6 +200,14 @@ void expectRefusal(const std::string& p, const std::string& what) {
         EXPECT_NE(msg.find(p), std::string::npos) << msg;
         EXPECT_NE(msg.find(what), std::string::npos) << msg;
     }
+}
+
+}  // namespace
+
+TEST_F(ImageIO, AbsurdSizeIsRefusedBeforeAllocating) {
+    const std::string p = file("huge.exr");
+    std::ofstream(p, std::ios::binary) << hugeExrHeader(20000, 20000);  // 4e8 > 2^28 pixels
+    expectRefusal(p, "2^28");
 }
 
 // OpenEXR sizes its decompression buffer from the compression's block of scan lines, whatever the
