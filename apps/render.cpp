@@ -1,6 +1,7 @@
 // `render`: renders a Mitsuba-XML scene to an OpenEXR file (and an sRGB PNG beside it).
 // Run `render --help` for the options. Ctrl-C (SIGINT) or SIGTERM stops the render and writes
 // the image with the samples done so far.
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -23,6 +24,7 @@
 #include "render/integrator.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "render/samplers/sampler_description.h"
 #include "render/scene_hash.h"
 #include "spectral/color_management.h"
 
@@ -79,9 +81,14 @@ Output
                            per bin, the mean radiance over the bin (docs/spectral.md)
   --spectral-bin-width NM  bin width for --spectral-output over 360-830 nm (default 5)
 Sampling
-  --spp N                  samples per pixel (default: the scene's sampler sample_count)
+  --spp N                  samples per pixel (default: the scene's sampler sample_count); also the
+                           pattern size of the stratified and multijitter samplers
   --spp-range A:B          render only samples A..B-1 of every pixel (a shard of a split render);
-                           keep its film state with --checkpoint and add the shards with `merge`
+                           keep its film state with --checkpoint and add the shards with `merge`;
+                           give the whole render's --spp too when the sampler is stratified or
+                           multijitter (the pattern size the shards share)
+  --sampler NAME           independent, stratified, multijitter or sobol (default: the scene's
+                           <sampler>); docs/rendering.md says how each draws its points
   --time-limit SEC         stop after SEC seconds of wall time (with --spp 0: render until then)
   --seed N                 random seed (default 0); images are identical for any --threads
   --threads N              worker threads (default: all cores)
@@ -167,6 +174,7 @@ int main(int argc, char** argv) {
     std::string checkpoint, spectralOutput, variancePath;
     double spectralBinWidth = 5.0;
     bool writePng = true, quiet = false, resume = false, sppRange = false;
+    int sppArg = -1, rangeEnd = 0;  // --spp, and the end of --spp-range
     std::map<std::string, std::string> defines;
     RenderOptions opt;
 
@@ -196,8 +204,8 @@ int main(int argc, char** argv) {
             if (!(spectralBinWidth > 0)) usageError("--spectral-bin-width must be > 0 nm");
         }
         else if (a == "--spp") {
-            opt.spp = parseInt(a, value());
-            if (opt.spp < 0) usageError("--spp must be >= 0");
+            sppArg = parseInt(a, value());
+            if (sppArg < 0) usageError("--spp must be >= 0");
         } else if (a == "--spp-range") {
             const std::string v = value();
             const size_t colon = v.find(':');
@@ -205,8 +213,15 @@ int main(int argc, char** argv) {
             const int b = parseInt(a, v.substr(0, colon)), e = parseInt(a, v.substr(colon + 1));
             if (b < 0 || e <= b) usageError("--spp-range A:B needs 0 <= A < B, got '" + v + "'");
             opt.firstSample = b;
-            opt.spp = e - b;
+            rangeEnd = e;
             sppRange = true;
+        } else if (a == "--sampler") {
+            opt.sampler = value();
+            try {
+                sampleSequenceNamed(opt.sampler);
+            } catch (const Error& e) {
+                usageError(e.what());
+            }
         } else if (a == "--time-limit") {
             opt.timeLimit = parseDouble(a, value());
             if (opt.timeLimit <= 0) usageError("--time-limit must be > 0 seconds");
@@ -262,6 +277,10 @@ int main(int argc, char** argv) {
         else usageError("more than one scene file given ('" + scenePath + "' and '" + a + "')");
     }
     if (scenePath.empty()) scenePath = sourcePath("scenes/default.xml");
+    // --spp N is the render's sample count and its sampler's pattern size; with --spp-range A:B it
+    // names the whole render the shard belongs to (its pattern size), in any order of the options.
+    opt.spp = sppRange ? rangeEnd - opt.firstSample : sppArg;
+    opt.patternSize = std::max(sppArg, 0);
     if ((resume || opt.checkpointEvery > 0) && checkpoint.empty()) usageError("--resume and --checkpoint-every need --checkpoint FILE");
     if (!spectralOutput.empty() && opt.rgbMode) usageError("--spectral-output needs --mode spectral (RGB-mode channels are not wavelength samples)");
     if (!spectralOutput.empty() && resume) usageError("--spectral-output cannot be combined with --resume (checkpoints hold the colour film only)");

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/math.h"
+#include "core/sample_sequences.h"
 
 namespace iris {
 
@@ -46,23 +47,50 @@ private:
     uint64_t state_, inc_;
 };
 
-/// Independent random sampler for one (pixel, sample index) pair: the stream depends only on the
-/// render seed, the pixel and the sample index, never on scheduling.
+/// How a sampler draws its points (render/samplers/, core/sample_sequences.h): the sequence and,
+/// for stratified and multijitter, the pattern size n and whether points are jittered inside their
+/// strata (false: stratum centres).
+struct SamplePattern {
+    SampleSequence sequence = SampleSequence::Independent;
+    uint32_t size = 1;
+    bool jitter = true;
+};
+
+/// The sampler of one (pixel, sample index) pair: every value depends only on the render seed, the
+/// pixel, the sample index and the request's position in the path's sequence of get1D/get2D calls
+/// (its dimension), never on scheduling. Independent: one PCG32 stream per pair. Other sequences:
+/// request d takes its point from the sequence with a seed of (seed, pixel, d), jittered with the
+/// pair's PCG32 stream.
 class Sampler {
 public:
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
         : rng_(mix64(seed ^ mix64(pixelIndex * 0x9e3779b97f4a7c15ull + sampleIndex)),
                mix64(pixelIndex) ^ seed) {}
+    Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex, const SamplePattern& pattern)
+        : Sampler(seed, pixelIndex, sampleIndex) {
+        pattern_ = pattern;
+        pixelSeed_ = mix64(seed ^ mix64(pixelIndex + 0x2545f4914f6cdd1dull));
+        sampleIndex_ = sampleIndex;
+    }
     explicit Sampler(uint64_t seed) : rng_(mix64(seed), mix64(seed ^ 0x5851f42d4c957f2dull)) {}
 
-    float get1D() { return rng_.uniform(); }
+    float get1D() { return pattern_.sequence == SampleSequence::Independent ? rng_.uniform() : patterned1D(); }
     vec2 get2D() {
+        if (pattern_.sequence != SampleSequence::Independent) return patterned2D();
         const float a = rng_.uniform();
         return vec2(a, rng_.uniform());
     }
 
 private:
+    float patterned1D();
+    vec2 patterned2D();
+    uint64_t nextDimensionSeed() { return mix64(pixelSeed_ + uint64_t(dimension_++) * 0x9e3779b97f4a7c15ull); }
+    float jitter() { return pattern_.jitter ? rng_.uniform() : 0.5f; }
+
     Pcg32 rng_;
+    SamplePattern pattern_;
+    uint64_t pixelSeed_ = 0, sampleIndex_ = 0;
+    uint32_t dimension_ = 0;
 };
 
 }  // namespace iris

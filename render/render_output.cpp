@@ -27,6 +27,7 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, c
         {"iris.rgb_wavelengths", opt.rgbMode ? strCat(l.x, ",", l.y, ",", l.z) : std::string("")},
         {"iris.wavelength_pdf", opt.rgbMode ? "fixed" : (opt.uniformWavelengths ? "uniform" : "visible")},
         {"iris.wavelength_sampling", opt.rgbMode ? "fixed" : (opt.independentWavelengths ? "independent" : "hero")},
+        {"iris.sampler", renderer.samplerName()},
         {"iris.spp", std::to_string(st.sppMin)},
         {"iris.spp_max", std::to_string(st.sppMax)},
         {"iris.spp_target", std::to_string(renderer.targetSpp())},

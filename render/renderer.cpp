@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
+#include "render/samplers/sampler_description.h"
 #include "spectral/xyz.h"
 
 namespace iris {
@@ -107,6 +108,10 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(sc
     if (opt_.firstSample < 0) fail("the first sample index must be >= 0, got ", opt_.firstSample);
     if (opt_.firstSample > 0 && spp_ == 0) fail("a sample range needs a fixed sample count, not --spp 0");
     if (int64_t(opt_.firstSample) + spp_ > int64_t(INT32_MAX)) fail("sample range end exceeds 2^31 - 1");
+    pattern_ = scene.description().samplePattern;
+    if (!opt_.sampler.empty()) pattern_.sequence = sampleSequenceNamed(opt_.sampler);
+    if (opt_.patternSize < 0) fail("the sampler's pattern size must be >= 0, got ", opt_.patternSize);
+    pattern_.size = uint32_t(std::max(1, opt_.patternSize > 0 ? opt_.patternSize : scene.description().spp));
 }
 
 std::string Renderer::settingsKey() const {
@@ -118,7 +123,18 @@ std::string Renderer::settingsKey() const {
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
                   ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : "path",
                   ";maxdepth=", integrator ? integrator->maxDepth() : -1, ";scene_hash=", opt_.sceneHash,
-                  ";first_sample=", opt_.firstSample);
+                  ";first_sample=", opt_.firstSample, samplerKey());
+}
+
+std::string Renderer::samplerName() const {
+    const SampleSequence q = pattern_.sequence;
+    const bool patterned = q == SampleSequence::Stratified || q == SampleSequence::Multijitter;
+    return strCat(sampleSequenceName(q), patterned ? strCat("/", pattern_.size) : std::string(), patterned && !pattern_.jitter ? "/nojitter" : "");
+}
+
+std::string Renderer::samplerKey() const {
+    // Absent for the independent sampler, so checkpoints of earlier versions stay compatible.
+    return pattern_.sequence == SampleSequence::Independent ? std::string() : ";sampler=" + samplerName();
 }
 
 std::string Renderer::stateHeader() const {
@@ -196,7 +212,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                 for (int y = y0; y < std::min(y0 + kTile, h); ++y)
                     for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
                         const uint64_t pixelIndex = uint64_t(y) * w + x;
-                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(opt_.firstSample) + uint64_t(s));
+                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(opt_.firstSample) + uint64_t(s), pattern_);
                         SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
                                                 : opt_.independentWavelengths ? independentWavelengths(sampler, opt_)
                                                 : opt_.uniformWavelengths

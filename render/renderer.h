@@ -18,6 +18,9 @@ namespace iris {
 struct RenderOptions {
     int spp = -1;                  // samples per pixel (-1: the scene's)
     int firstSample = 0;           // index of the first sample (a shard renders [firstSample, firstSample + spp))
+    std::string sampler;           // sequence by sampler name ("" = the scene's; render/samplers/)
+    int patternSize = 0;           // stratified/multijitter pattern size n (0 = the scene's sample_count);
+                                   // the shards of one render must share it
     std::string sceneHash;         // identifies the scene file's content and -D overrides (render/scene_hash.h)
     double timeLimit = 0;          // seconds (0 = none); with spp = 0 render until the time is up
     uint64_t seed = 0;
@@ -61,11 +64,17 @@ public:
     /// "A:" when the time limit decides): the header of checkpoints and film states.
     std::string stateHeader() const;
     int targetSpp() const { return spp_; }
+    /// The sampler's sequence and, for stratified and multijitter, its pattern size: "sobol",
+    /// "stratified/16", "multijitter/64/nojitter" (metadata iris.sampler).
+    std::string samplerName() const;
 
 private:
+    std::string samplerKey() const;  // the sampler part of settingsKey()
+
     const Scene& scene_;
     RenderOptions opt_;
     int spp_;
+    SamplePattern pattern_;
 };
 
 /// Convert a film to the image stored on disk: XYZ (spectral) or linear Rec.709 (RGB mode) in the

@@ -11,6 +11,7 @@
 
 #include "core/math.h"
 #include "core/mesh.h"
+#include "core/rng.h"
 #include "materials/material.h"
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
@@ -52,6 +53,9 @@ struct SceneDescription {
     CameraDescription camera;
     IntegratorPtr integrator;  // render/integrator.h; the loader gives "path" when the scene names none
     int spp = 16;  // sampler sample_count
+    // The sampler's sequence (render/samplers/); its pattern size is set by the renderer.
+    std::string samplerName = "independent";
+    SamplePattern samplePattern;
 };
 
 }  // namespace iris

@@ -4,6 +4,7 @@
 // (Ctrl-C → KeyboardInterrupt cancels the render, which keeps what was rendered) and to call the
 // progress callback (and, with spectral_bins, a per-wavelength image: render/spectral_film.h). The image is converted and described by render/render_output.h, exactly as
 // the `render` executable does, so both give the same pixels for the same scene, seed and spp.
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
@@ -165,10 +166,12 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
 
 py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t seed, int threads, bool rgbMode,
                         int spectralSamples, const std::vector<float>& rgbWavelengths, bool uniformWavelengths,
-                        bool independentWavelengths, int spectralBins, const std::string& outputSpace, const std::string& ocioConfig,
-                        const py::object& progress) {
+                        bool independentWavelengths, const std::string& sampler, int spectralBins, const std::string& outputSpace,
+                        const std::string& ocioConfig, const py::object& progress) {
     RenderOptions opt;
     opt.spp = spp;
+    opt.patternSize = std::max(spp, 0);  // as render --spp N: the sample count is the pattern size
+    opt.sampler = sampler;
     opt.timeLimit = timeLimit;
     opt.seed = seed;
     opt.threads = threads;
@@ -226,7 +229,7 @@ void bindRender(py::module_& m) {
     m.def("load_string", &loadString, py::arg("xml"), py::arg("base_dir"), py::arg("defines"));
     m.def("render", &renderToPython, py::arg("scene"), py::arg("spp"), py::arg("time_limit"), py::arg("seed"),
           py::arg("threads"), py::arg("rgb_mode"), py::arg("spectral_samples"), py::arg("rgb_wavelengths"),
-          py::arg("uniform_wavelengths"), py::arg("independent_wavelengths"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
+          py::arg("uniform_wavelengths"), py::arg("independent_wavelengths"), py::arg("sampler"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
     m.def("source_path", &sourcePath, py::arg("relative"));
 }
 

@@ -45,7 +45,8 @@ class SplitPlan:
 
     def shard_command(self, i: int) -> list:
         a, b = self.ranges()[i]
-        return [str(self.render), str(self.scene), "--spp-range", f"{a}:{b}", "--checkpoint", str(self.shard(i)),
+        # --spp names the whole render: the pattern size a stratified or multijitter sampler shares.
+        return [str(self.render), str(self.scene), "--spp", str(self.spp), "--spp-range", f"{a}:{b}", "--checkpoint", str(self.shard(i)),
                 "--checkpoint-every", f"{self.checkpoint_every:g}", "-o", str(self.out / f"shard_{i}.exr"), "--no-png", "--quiet",
                 *self.render_args]
 

@@ -42,7 +42,12 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
     cam.filter = film.filter;
     cam.ldr = film.ldr;
     cam.sensor = SensorRegistry::instance().create(p, FilmSize{film.width, film.height});
-    if (c.sampler) scene.spp = SamplerRegistry::instance().create(*c.sampler)->sampleCount;
+    if (c.sampler) {
+        const std::shared_ptr<SamplerDescription> sampler = SamplerRegistry::instance().create(*c.sampler);
+        scene.spp = sampler->sampleCount;
+        scene.samplerName = c.sampler->type();
+        scene.samplePattern = sampler->pattern;
+    }
 }
 
 void loadEmitter(const Properties& p, SceneDescription& scene) {

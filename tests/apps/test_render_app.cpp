@@ -289,3 +289,22 @@ TEST(RenderApp, MomentIntegratorWritesFirstAndSecondMomentChannels) {
         }
     EXPECT_EQ(metadataValue(readEXRMetadata(out), "iris.integrator"), "moment");
 }
+
+TEST(RenderApp, SamplerOptionChoosesTheSequenceAndSppNamesThePattern) {
+    const std::string scene = tempPath("sampler.xml"), out = tempPath("sampler.exr"), ckpt = tempPath("sampler.ckpt");
+    writeTextFile(scene, kSmallScene);
+    const std::string app = appPath("render") + " " + scene + " -o " + out + " --quiet --no-png";
+    ASSERT_EQ(runCommand(app + " --spp 2 --sampler sobol").exitCode, 0);
+    EXPECT_EQ(metadataValue(readEXRMetadata(out), "iris.sampler"), "sobol");
+    // --spp names the pattern of the whole render even after --spp-range, whose count it keeps.
+    std::filesystem::remove(ckpt);
+    const RunResult shard = runCommand(app + " --spp-range 0:2 --spp 4 --sampler stratified --checkpoint " + ckpt);
+    ASSERT_EQ(shard.exitCode, 0) << shard.stderrText;
+    const ImageMetadata meta = readEXRMetadata(out);
+    EXPECT_EQ(metadataValue(meta, "iris.sampler"), "stratified/4");
+    EXPECT_EQ(metadataValue(meta, "iris.spp_target"), "2");
+    const RunResult bad = runCommand(app + " --sampler halton");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.stderrText.find("unknown sampler 'halton' (supported: independent, stratified, multijitter, sobol)"), std::string::npos)
+        << bad.stderrText;
+}

@@ -66,6 +66,11 @@ class RenderEqualsCLI(unittest.TestCase):
         with self.assertRaises(iris.Error):
             iris.render(iris.load_file(SCENE, res=8), spp=1, wavelength_sampling="stratified")
 
+    def test_samplers_equal_cli(self):
+        for sampler in ("stratified", "multijitter", "sobol"):
+            r = self.compare(dict(spp=4, seed=2, sampler=sampler), ["--spp", "4", "--seed", "2", "--sampler", sampler])
+            self.assertEqual(r.metadata["iris.sampler"], sampler + ("" if sampler == "sobol" else "/4"))
+
     def test_rgb_render_equals_cli(self):
         self.compare(dict(spp=2, seed=1, mode="rgb"), ["--spp", "2", "--seed", "1", "--mode", "rgb"])
 
@@ -190,8 +195,8 @@ class RenderBehaviour(unittest.TestCase):
             iris.render(scene, spectral_samples=33)
         with self.assertRaisesRegex(iris.Error, "colour space 'nope'|'nope' is not in"):
             iris.render(scene, colorspace="nope")
-        with self.assertRaisesRegex(iris.Error, "sampler"):
-            iris.render(scene, sampler="sobol")
+        with self.assertRaisesRegex(iris.Error, "unknown sampler 'halton'"):
+            iris.render(scene, sampler="halton")
         with self.assertRaises(TypeError):
             iris.render(scene, spp=1.5)
         with self.assertRaises(TypeError):

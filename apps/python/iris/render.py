@@ -112,8 +112,9 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
     mode "spectral" (spectral_samples wavelengths per path) or "rgb", seed, threads (0: all cores),
     time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
     rgb_wavelengths (R, G, B in nm), uniform_wavelengths, wavelength_sampling ("hero", the default,
-    or "independent": render --wavelength-sampling). `sampler` may only be "independent":
-    the renderer has one sample sequence (a PCG32 stream per pixel and sample). `progress`: a
+    or "independent": render --wavelength-sampling), sampler (None: the scene's <sampler>; or
+    "independent", "stratified", "multijitter", "sobol": render --sampler; an spp given is also the
+    pattern size of stratified and multijitter, as --spp is). `progress`: a
     callable receiving the fraction done, or True for a bar on stderr. `spectral_bins` > 0 (spectral
     mode) also returns `spectral`: per pixel the spectral radiance averaged over that many equal
     wavelength bins on 360–830 nm (render/spectral_film.h), estimated from the same samples."""
@@ -123,9 +124,8 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         raise _iris.Error(f"mode: unknown '{mode}' (expected spectral or rgb)")
     if wavelength_sampling not in ("hero", "independent"):
         raise _iris.Error(f"wavelength_sampling: unknown '{wavelength_sampling}' (expected hero or independent)")
-    if sampler not in (None, "independent"):
-        raise _iris.Error(f"sampler: '{sampler}' is not supported (the renderer draws every sample from its own "
-                          "PCG32 stream per pixel and sample index: use None or 'independent')")
+    if sampler not in (None, "independent", "stratified", "multijitter", "sobol"):
+        raise _iris.Error(f"sampler: unknown sampler '{sampler}' (supported: independent, stratified, multijitter, sobol)")
     spp = -1 if spp is None else _count("spp", spp, 0)
     limit = 0.0
     if time_limit is not None:
@@ -143,7 +143,7 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
     d = _iris.render(scene, spp, limit, _count("seed", seed, 0, 2**63 - 1), _count("threads", threads, 0),
                      mode == "rgb", _count("spectral_samples", spectral_samples, 1, 32),
                      _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths),
-                     wavelength_sampling == "independent", bins, colorspace, ocio_config or "",
+                     wavelength_sampling == "independent", sampler or "", bins, colorspace, ocio_config or "",
                      callback)
     result = RenderResult(d["image"], d["variance"], d["sample_count"], d["metadata"], d["stats"],
                           spectral=d.get("spectral"), spectral_wavelengths=d.get("spectral_wavelengths"),

@@ -1,0 +1,166 @@
+// Sample sequences of the samplers (core/sample_sequences.h).
+#include "core/sample_sequences.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+
+#include "core/rng.h"
+
+namespace iris {
+
+namespace {
+
+/// The 32 bits of x in reverse order (bit 0 becomes bit 31).
+uint32_t reverseBits32(uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+/// A 32-bit seed for part `part` of a request (SplitMix64 of the request's seed).
+uint32_t partSeed(uint64_t dimensionSeed, uint64_t part) { return uint32_t(mix64(dimensionSeed + part * 0x9e3779b97f4a7c15ull)); }
+
+/// One round of an invertible hash of b-bit integers (`mask` = 2^b − 1): xor with a key, multiply by
+/// an odd constant and xorshift right, each a bijection modulo 2^b.
+uint32_t hashRound(uint32_t i, uint32_t mask, int bits, uint32_t key, uint32_t odd) {
+    i = (i ^ key) & mask;
+    i = (i * odd) & mask;
+    return i ^ (i >> std::max(1, bits / 2));
+}
+
+/// A fraction of 2^32 as a float in [0, 1).
+float unitFloat(uint32_t bits) { return std::min(kOneMinusEpsilon, float(bits) * 0x1p-32f); }
+
+/// (stratum + jitter) / strata as a float in [0, 1).
+float inStratum(uint64_t stratum, float jitter, uint64_t strata) {
+    return std::min(kOneMinusEpsilon, float((double(stratum) + double(jitter)) / double(strata)));
+}
+
+/// ⌈√n⌉ for n >= 1.
+uint32_t ceilSqrt(uint32_t n) {
+    uint32_t m = uint32_t(std::sqrt(double(n)));
+    while (uint64_t(m) * m < n) ++m;
+    while (m > 1 && uint64_t(m - 1) * (m - 1) >= n) --m;
+    return m;
+}
+
+/// Sobol direction numbers of dimension 1 (primitive polynomial x + 1): m_1 = 1,
+/// m_k = 2·m_{k−1} ⊕ m_{k−1}, v_k = m_k / 2^k (Bratley & Fox, ACM TOMS 14(1), 1988, eq. 2–3).
+constexpr std::array<uint32_t, 32> sobolDimension1() {
+    std::array<uint32_t, 32> v{};
+    uint64_t m = 1;
+    for (int k = 1; k <= 32; ++k) {
+        v[size_t(k - 1)] = uint32_t(m << (32 - k));
+        m = (m << 1) ^ m;
+    }
+    return v;
+}
+
+constexpr std::array<uint32_t, 32> kSobol1 = sobolDimension1();
+
+/// The request's index within its pattern of n and the seed of its round ⌊index / n⌋.
+struct PatternIndex {
+    uint32_t index;
+    uint64_t roundSeed;
+};
+
+PatternIndex patternIndex(uint64_t sampleIndex, uint32_t n, uint64_t dimensionSeed) {
+    return {uint32_t(sampleIndex % n), mix64(dimensionSeed ^ mix64(sampleIndex / n + 0x632be59bd9b4e019ull))};
+}
+
+}  // namespace
+
+uint32_t permuteIndex(uint32_t i, uint32_t n, uint64_t seed) {
+    if (n <= 1) return 0;
+    const int bits = 32 - std::countl_zero(n - 1);
+    const uint32_t mask = bits >= 32 ? 0xffffffffu : (1u << bits) - 1u;
+    // Independent keys per round: the first round's xor makes the image of any i uniform over
+    // the seeds, and each later round is a bijection with a key of its own, so it stays uniform.
+    const uint32_t k0 = uint32_t(seed), k1 = uint32_t(seed >> 32), k2 = uint32_t(mix64(seed)), k3 = uint32_t(mix64(seed) >> 32);
+    do {  // cycle-walking: a bijection of [0, 2^b) restricted to [0, n) is a bijection of [0, n)
+        i = hashRound(i, mask, bits, k0, 0x9e3779b1u);
+        i = hashRound(i, mask, bits, k1, 0x85ebca6bu);
+        i = hashRound(i, mask, bits, k2, 0xc2b2ae35u);
+        i = hashRound(i, mask, bits, k3, 0x27d4eb2fu);
+    } while (i >= n);
+    // Cycle-walking leaves where an index goes non-uniform over the seeds when n is not a power of
+    // two; a seeded rotation of [0, n) after it makes that exactly uniform and keeps the bijection.
+    return uint32_t((uint64_t(i) + mix64(seed ^ 0xa0761d6478bd642full) % n) % n);
+}
+
+uint32_t sobolBits(uint32_t index, int dimension) {
+    if (dimension == 0) return reverseBits32(index);  // v_k = 2^−k: the van der Corput sequence
+    uint32_t x = 0;
+    for (int k = 0; index; ++k, index >>= 1)
+        if (index & 1u) x ^= kSobol1[size_t(k)];
+    return x;
+}
+
+uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
+    // Burley 2020, listing 3 (the Laine–Karras style hash with the paper's improved constants),
+    // applied to the bit-reversed value so that each bit is flipped by a hash of the bits above it.
+    x = reverseBits32(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return reverseBits32(x);
+}
+
+float stratified1D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, float jitter) {
+    const PatternIndex p = patternIndex(sampleIndex, patternSize, dimensionSeed);
+    return inStratum(permuteIndex(p.index, patternSize, p.roundSeed), jitter, patternSize);
+}
+
+vec2 stratified2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, vec2 jitter) {
+    const PatternIndex p = patternIndex(sampleIndex, patternSize, dimensionSeed);
+    const uint32_t m = ceilSqrt(patternSize);
+    const uint32_t cell = permuteIndex(p.index, m * m, p.roundSeed);  // n <= m² distinct cells
+    return vec2(inStratum(cell % m, jitter.x, m), inStratum(cell / m, jitter.y, m));
+}
+
+vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, vec2 jitter) {
+    const PatternIndex p = patternIndex(sampleIndex, patternSize, dimensionSeed);
+    // Kensler 2013, listing 4: an m×k grid of cells (m columns, k rows, m·k >= n) whose points are
+    // also stratified in m·k strata along x and along y: x = (column + (s_y + j_x)/k)/m, y = (row +
+    // (s_x + j_y)/m)/k with s_x, s_y permutations shared by each column and each row.
+    const uint32_t m = ceilSqrt(patternSize), k = (patternSize + m - 1) / m;
+    const uint32_t s = permuteIndex(p.index, patternSize, p.roundSeed);
+    const uint32_t column = s % m, row = s / m;
+    const uint32_t sx = permuteIndex(column, m, mix64(p.roundSeed + 1)), sy = permuteIndex(row, k, mix64(p.roundSeed + 2));
+    return vec2(inStratum(uint64_t(column) * k + sy, jitter.x, uint64_t(m) * k),
+                inStratum(uint64_t(row) * m + sx, jitter.y, uint64_t(m) * k));
+}
+
+float sobol1D(uint64_t sampleIndex, uint64_t dimensionSeed) {
+    const uint32_t index = nestedUniformScramble(uint32_t(sampleIndex), partSeed(dimensionSeed, 0));
+    return unitFloat(nestedUniformScramble(sobolBits(index, 0), partSeed(dimensionSeed, 1)));
+}
+
+vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed) {
+    const uint32_t index = nestedUniformScramble(uint32_t(sampleIndex), partSeed(dimensionSeed, 0));
+    return vec2(unitFloat(nestedUniformScramble(sobolBits(index, 0), partSeed(dimensionSeed, 1))),
+                unitFloat(nestedUniformScramble(sobolBits(index, 1), partSeed(dimensionSeed, 2))));
+}
+
+float Sampler::patterned1D() {
+    const uint64_t d = nextDimensionSeed();
+    if (pattern_.sequence == SampleSequence::Sobol) return sobol1D(sampleIndex_, d);
+    return stratified1D(sampleIndex_, pattern_.size, d, jitter());  // stratified and multijitter
+}
+
+vec2 Sampler::patterned2D() {
+    const uint64_t d = nextDimensionSeed();
+    if (pattern_.sequence == SampleSequence::Sobol) return sobol2D(sampleIndex_, d);
+    const float jx = jitter();
+    const vec2 j(jx, jitter());
+    return pattern_.sequence == SampleSequence::Multijitter ? multijitter2D(sampleIndex_, pattern_.size, d, j)
+                                                            : stratified2D(sampleIndex_, pattern_.size, d, j);
+}
+
+}  // namespace iris

@@ -1,0 +1,46 @@
+// The sample sequences of the samplers (render/samplers/): for one pixel, one dimension (a 1D or
+// 2D request of the path) and a sample index, the point that sample uses. Every function is pure:
+// the point depends only on its arguments, so images stay bit-identical for any thread count, and
+// resumed or split renders equal uninterrupted ones.
+//  - stratified: n samples over n strata (1D) or an m×m grid, m = ⌈√n⌉ (2D); each dimension visits
+//    its strata in its own random order (a hashed permutation), jittered inside the stratum.
+//  - multijitter: Kensler's correlated multi-jittered 2D points ("Correlated Multi-Jittered
+//    Sampling", Pixar tech memo 13-01, 2013): stratified on an m×k grid and in n strata along
+//    each axis at once; 1D requests as stratified.
+//  - sobol: the first two dimensions of the Sobol sequence (Sobol 1967; direction numbers of the
+//    polynomials 1 and x + 1), each request with its own Owen scrambling and index shuffling by
+//    hashed nested uniform scrambling (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4),
+//    2020): every aligned block of 2^k consecutive sample indices is a (0, k, 2)-net in each 2D
+//    request and stratified in 2^k strata in each 1D request. No pattern size: any number works.
+// Sample indices at or beyond the pattern size n of stratified and multijitter start a new,
+// independently permuted pattern ("round" ⌊index / n⌋).
+#pragma once
+
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace iris {
+
+enum class SampleSequence { Independent, Stratified, Multijitter, Sobol };
+
+/// A bijection of [0, n) chosen by `seed` (an invertible hash of ⌈log2 n⌉-bit integers, cycle-walked
+/// into [0, n) as Kensler 2013, section 3, does, with a hash of our own, then rotated by a seeded
+/// offset). For each i its image is uniform over the seeds.
+uint32_t permuteIndex(uint32_t i, uint32_t n, uint64_t seed);
+
+/// Bits of the Sobol point of `index` in dimension 0 (van der Corput) or 1, as a 32-bit fraction.
+uint32_t sobolBits(uint32_t index, int dimension);
+
+/// Owen scrambling of a 32-bit fraction by the hashed nested uniform scramble (Burley 2020, §3–4).
+uint32_t nestedUniformScramble(uint32_t x, uint32_t seed);
+
+/// The point of a 1D / 2D request. `dimensionSeed` identifies the (seed, pixel, request); `jitter`
+/// (in [0,1)^2) places the point inside its stratum (0.5 centres it); `patternSize` n >= 1.
+float stratified1D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, float jitter);
+vec2 stratified2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, vec2 jitter);
+vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, vec2 jitter);
+float sobol1D(uint64_t sampleIndex, uint64_t dimensionSeed);
+vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed);
+
+}  // namespace iris
