@@ -20,6 +20,7 @@ RENDER_OPTIONS = {
     "spectral_samples": "--spectral-samples",
     "rgb_wavelengths": "--rgb-wavelengths",
     "wavelength_sampling": "--wavelength-sampling",   # not in render yet: see tools.render_supports
+    "sampler": "--sampler",
 }
 
 

@@ -1,6 +1,7 @@
 """A stand-in for build/render used by the framework tests: same command line, writes an EXR with
 the renderer's metadata. Pixel values: 0.5 + offset + Gaussian noise of standard deviation
-0.2 / sqrt(spp · wavelengths-per-path) (fixed by --seed), so error falls as samples rise.
+0.2 / sqrt(spp · wavelengths-per-path) (fixed by --seed), so error falls as samples rise; --sampler
+scales that deviation by NOISE_OF_SAMPLER (so sobol's relMSE is a quarter of independent's).
 -D fail=1 makes it fail like a broken scene."""
 import argparse
 import sys
@@ -10,6 +11,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from iris_experiments import exr  # noqa: E402
+
+
+NOISE_OF_SAMPLER = {"independent": 1.0, "stratified": 0.8, "multijitter": 0.7, "sobol": 0.5}
 
 
 def main(argv):
@@ -23,6 +27,7 @@ def main(argv):
     p.add_argument("--rgb-wavelengths", default="645,525,445")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--time-limit", type=float, default=0)
+    p.add_argument("--sampler", default="independent", choices=sorted(NOISE_OF_SAMPLER))
     p.add_argument("-D", action="append", default=[])
     p.add_argument("--quiet", action="store_true")
     a = p.parse_args(argv)
@@ -34,7 +39,7 @@ def main(argv):
     n = a.spectral_samples if a.mode == "spectral" else 3
     rng = np.random.default_rng(a.seed * 1000003 + res)
     offset = float(defines.get("offset", 0.0))
-    img = 0.5 + offset + rng.normal(0.0, 0.2 / np.sqrt(a.spp * n), size=(res, res, 3))
+    img = 0.5 + offset + rng.normal(0.0, NOISE_OF_SAMPLER[a.sampler] * 0.2 / np.sqrt(a.spp * n), size=(res, res, 3))
     exr.write_exr(a.out, img.astype(np.float32), metadata={
         "iris.spp": a.spp, "iris.seed": a.seed, "iris.mode": a.mode, "iris.spectral_samples": a.spectral_samples,
         "iris.render_time_s": 0.001 * a.spp * n, "iris.rays": a.spp * n * res * res, "iris.version": "fake",

@@ -292,6 +292,18 @@ class ExperimentEndToEndTest(TempDirTest):
         ref_meta = exr.read_exr_metadata(str(out / "reference" / "thin_film.exr"))
         self.assertEqual(ref_meta["iris.spp"], "32")  # 2 seeds x 16 spp merged
 
+    def test_sampler_efficiency_reports_the_variance_reduction(self):
+        # The fake renderer scales its noise by 0.8, 0.7, 0.5 for stratified, multijitter, sobol:
+        # relMSE falls by 1/0.64, 1/0.49, 1/0.25 (within the reference's own noise).
+        out, _ = self.run_experiment("sampler_efficiency")
+        text = (out / "report.md").read_text()
+        self.assertIn("Variance reduction at equal spp", text)
+        for name, factor in (("stratified", 1 / 0.64), ("multijitter", 1 / 0.49), ("sobol", 4.0)):
+            line = next(l for l in text.splitlines() if l.startswith(f"- ") and f": {name} lowers relMSE" in l)
+            lo, hi = (float(x) for x in line.split("by a factor ")[1].split(" over")[0].split(" to "))
+            self.assertGreater(lo, 0.8 * factor, line)
+            self.assertLess(hi, 1.2 * factor, line)
+
     def test_per_bounce_phase_without_real_difference_has_zero_excess(self):
         # The fake renderer ignores phase_model: both variants are the same image, so the measured
         # difference must equal the noise floor exactly.
