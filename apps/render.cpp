@@ -64,6 +64,16 @@ std::function<void(uint64_t, int)> signalHookFromEnvironment() {
     };
 }
 
+/// Test hook: IRIS_TEST_SIGNAL_AT_START=1 raises IRIS_TEST_SIGNAL (INT or TERM) before the scene is
+/// loaded (start-up and table builds run with the default signal actions: the process ends and
+/// writes nothing).
+void raiseAtStartIfAsked() {
+    const char* v = std::getenv("IRIS_TEST_SIGNAL_AT_START");
+    if (!v || std::string(v) != "1") return;
+    const char* name = std::getenv("IRIS_TEST_SIGNAL");
+    std::raise(name && std::string(name) == "TERM" ? SIGTERM : SIGINT);
+}
+
 /// printf format: %s is the default RGB channel wavelengths.
 const char* kUsage = R"(usage: render [scene.xml] [options]
 Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
@@ -295,6 +305,7 @@ int main(int argc, char** argv) {
         const ColorManager colors(ocioConfig);
         if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
 
+        raiseAtStartIfAsked();
         SceneDescription desc = loadScene(scenePath, defines);
         opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line
         const Scene scene(std::move(desc));

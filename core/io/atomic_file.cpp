@@ -86,8 +86,18 @@ std::string folderOf(const std::string& path) {
     return parent.empty() ? std::string(".") : parent.string();
 }
 
+/// IRIS_FAULT_SIGNAL_BEFORE_RENAME=INT|TERM|KILL: raise that signal once the temporary is complete,
+/// just before it is renamed over the path (the last moment a signal can meet a write).
+void raiseInjectedSignalBeforeRename() {
+    const char* v = std::getenv("IRIS_FAULT_SIGNAL_BEFORE_RENAME");
+    if (!v || !*v) return;
+    const std::string name = v;
+    ::raise(name == "KILL" ? SIGKILL : name == "TERM" ? SIGTERM : SIGINT);
+}
+
 /// Make the finished temporary durable and move it over `path`.
 void commit(TempFile& tmp, const std::string& path) {
+    raiseInjectedSignalBeforeRename();
     const long long space = injectedDiskSpace();
     struct stat st{};
     if (space >= 0 && ::stat(tmp.path().c_str(), &st) == 0 && st.st_size > space) failErrno(path, "write failed", ENOSPC);

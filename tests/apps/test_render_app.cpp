@@ -308,3 +308,36 @@ TEST(RenderApp, SamplerOptionChoosesTheSequenceAndSppNamesThePattern) {
     EXPECT_NE(bad.stderrText.find("unknown sampler 'halton' (supported: independent, stratified, multijitter, sobol)"), std::string::npos)
         << bad.stderrText;
 }
+
+// A signal at start-up (before the handlers: the default action ends the process) or when the
+// output's temporary is complete but not yet renamed leaves the previous image byte for byte, or
+// no image; never a partial one (hooks IRIS_TEST_SIGNAL_AT_START, IRIS_FAULT_SIGNAL_BEFORE_RENAME).
+TEST(RenderApp, SignalAtStartUpOrBeforeTheRenameLeavesThePreviousImageOrNone) {
+    const std::string scene = tempPath("sigmoment.xml"), out = tempPath("sigmoment.exr");
+    writeTextFile(scene, kSmallScene);
+    const std::string app = appPath("render") + " " + scene + " -o " + out + " --spp 1 --quiet --no-png";
+    auto removeTemporaries = [&] {
+        int n = 0;
+        for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(out).parent_path()))
+            if (e.path().string().rfind(out + ".tmp-", 0) == 0) {
+                std::filesystem::remove(e.path());
+                ++n;
+            }
+        return n;
+    };
+    for (const std::string hook : {"IRIS_TEST_SIGNAL_AT_START=1 IRIS_TEST_SIGNAL=TERM", "IRIS_TEST_SIGNAL_AT_START=1",
+                                   "IRIS_FAULT_SIGNAL_BEFORE_RENAME=INT", "IRIS_FAULT_SIGNAL_BEFORE_RENAME=TERM"}) {
+        ASSERT_EQ(runCommand(app + " --seed 1").exitCode, 0);
+        const std::string before = fileBytes(out);
+        const RunResult r = runCommand(hook + " " + app + " --seed 2");
+        EXPECT_NE(r.exitCode, 0) << hook;
+        EXPECT_NE(r.exitCode, 1) << hook << ": " << r.stderrText;  // ended by the signal, not an error
+        EXPECT_EQ(fileBytes(out), before) << hook;
+        const bool atRename = hook.find("RENAME") != std::string::npos;
+        EXPECT_EQ(removeTemporaries(), atRename ? 1 : 0) << hook;  // the complete, unrenamed temporary
+        std::filesystem::remove(out);
+        EXPECT_NE(runCommand(hook + " " + app + " --seed 2").exitCode, 0) << hook;
+        EXPECT_FALSE(std::filesystem::exists(out)) << hook;
+        removeTemporaries();
+    }
+}
