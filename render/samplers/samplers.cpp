@@ -31,9 +31,11 @@ std::shared_ptr<SamplerDescription> describe(const Properties& p, SampleSequence
     return d;
 }
 
-std::shared_ptr<SamplerDescription> independentSampler(const Properties& p) {
-    p.getBool("jitter", true);  // Mitsuba 0.6's samplers accept it
-    return describe(p, SampleSequence::Independent);
+/// A sampler without jittered strata (independent, sobol): Mitsuba 0.6's samplers accept `jitter`.
+template <SampleSequence S>
+std::shared_ptr<SamplerDescription> unjitteredSampler(const Properties& p) {
+    p.getBool("jitter", true);
+    return describe(p, S);
 }
 
 template <SampleSequence S>
@@ -41,11 +43,6 @@ std::shared_ptr<SamplerDescription> jitteredSampler(const Properties& p) {
     auto d = describe(p, S);
     d->pattern.jitter = p.getBool("jitter", true);
     return d;
-}
-
-std::shared_ptr<SamplerDescription> sobolSampler(const Properties& p) {
-    p.getBool("jitter", true);
-    return describe(p, SampleSequence::Sobol);
 }
 
 constexpr std::pair<SampleSequence, const char*> kNames[] = {{SampleSequence::Independent, "independent"},
@@ -67,13 +64,13 @@ const char* sampleSequenceName(SampleSequence s) {
     return "independent";
 }
 
-IRIS_REGISTER(SamplerRegistry, "independent", independentSampler);
+IRIS_REGISTER(SamplerRegistry, "independent", unjitteredSampler<SampleSequence::Independent>);
 IRIS_REGISTER(SamplerRegistry, "stratified", jitteredSampler<SampleSequence::Stratified>);
 IRIS_REGISTER(SamplerRegistry, "multijitter", jitteredSampler<SampleSequence::Multijitter>);
-IRIS_REGISTER(SamplerRegistry, "sobol", sobolSampler);
-IRIS_REGISTER(SamplerRegistry, "ldsampler", sobolSampler);
-IRIS_REGISTER(SamplerRegistry, "orthogonal", independentSampler);
-IRIS_REGISTER(SamplerRegistry, "halton", independentSampler);
-IRIS_REGISTER(SamplerRegistry, "hammersley", independentSampler);
+IRIS_REGISTER(SamplerRegistry, "sobol", unjitteredSampler<SampleSequence::Sobol>);
+IRIS_REGISTER(SamplerRegistry, "ldsampler", unjitteredSampler<SampleSequence::Sobol>);
+IRIS_REGISTER(SamplerRegistry, "orthogonal", unjitteredSampler<SampleSequence::Independent>);
+IRIS_REGISTER(SamplerRegistry, "halton", unjitteredSampler<SampleSequence::Independent>);
+IRIS_REGISTER(SamplerRegistry, "hammersley", unjitteredSampler<SampleSequence::Independent>);
 
 }  // namespace iris
