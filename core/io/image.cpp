@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -216,8 +217,12 @@ bool readExrDirect(const std::string& path, Image& img) {
         Imf::FrameBuffer fb;
         const size_t xStride = sizeof(float) * size_t(img.channels);
         const size_t yStride = xStride * size_t(img.width);
-        char* origin = reinterpret_cast<char*>(img.pixels.data()) - ptrdiff_t(dw.min.x) * ptrdiff_t(xStride) -
-                       ptrdiff_t(dw.min.y) * ptrdiff_t(yStride);
+        // Computed in unsigned integers: a data window far from the origin (a fuzzed header) puts this
+        // pointer outside the buffer, which is undefined behaviour as pointer arithmetic; OpenEXR only
+        // ever dereferences it inside the data window.
+        const uintptr_t base = reinterpret_cast<uintptr_t>(img.pixels.data());
+        char* origin = reinterpret_cast<char*>(base - uintptr_t(intptr_t(dw.min.x)) * xStride -
+                                               uintptr_t(intptr_t(dw.min.y)) * yStride);
         for (int c = 0; c < img.channels; ++c)
             fb.insert(img.channelNames[size_t(c)],
                       Imf::Slice(Imf::FLOAT, origin + sizeof(float) * size_t(c), xStride, yStride));
