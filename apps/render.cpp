@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "render/film.h"
 #include "core/io/image.h"
 #include "core/io/spectral_layout.h"
@@ -116,6 +117,9 @@ Scene
 Robustness
   --checkpoint FILE        keep the film state in FILE (written at the end, on Ctrl-C, and every
                            --checkpoint-every SEC); --resume continues from it bit-exactly
+  --memory-limit SIZE      refuse a scene whose meshes, textures and film would need more than
+                           SIZE (e.g. 512M, 4G; binary units), before allocating them; also
+                           IRIS_MEMORY_LIMIT; default: no limit
   --quiet                  no progress bar
   --version, --help
 )";
@@ -281,6 +285,14 @@ int main(int argc, char** argv) {
             opt.checkpointEvery = parseDouble(a, value());
             if (opt.checkpointEvery <= 0) usageError("--checkpoint-every must be > 0 seconds");
         } else if (a == "--resume") resume = true;
+        else if (a == "--memory-limit") {
+            const std::string v = value();
+            try {
+                setMemoryLimit(parseByteSize(v));
+            } catch (const Error& e) {
+                usageError(std::string("--memory-limit: ") + e.what());
+            }
+        }
         else if (a == "--quiet" || a == "-q") quiet = true;
         else if (!a.empty() && a[0] == '-') usageError("unknown option '" + a + "'");
         else if (scenePath.empty()) scenePath = a;
@@ -305,6 +317,7 @@ int main(int argc, char** argv) {
         const ColorManager colors(ocioConfig);
         if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
 
+        memoryLimit();  // an invalid IRIS_MEMORY_LIMIT stops here, before the scene is read
         raiseAtStartIfAsked();
         SceneDescription desc = loadScene(scenePath, defines);
         opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line

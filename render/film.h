@@ -36,6 +36,9 @@ public:
         return FixedSum(std::nearbyint(d));  // round to nearest (even): the only rounding of a sample
     }
 
+    /// Bytes per pixel of the sums and counts (the loader charges them to the memory budget).
+    static constexpr uint64_t kStateBytesPerPixel = 3 * sizeof(FixedSum) + 3 * sizeof(double) + sizeof(uint32_t);
+
     Film(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/memory_budget.h"
 #include "core/mesh.h"
 #include "core/rng.h"
 #include "materials/material.h"
@@ -56,6 +57,8 @@ struct SceneDescription {
     // The sampler's sequence (render/samplers/); its pattern size is set by the renderer.
     std::string samplerName = "independent";
     SamplePattern samplePattern;
+    // What the loader charged to the memory budget for this scene, given back when the last copy goes.
+    std::shared_ptr<const MemoryReservation> memory;
 };
 
 }  // namespace iris

@@ -25,6 +25,7 @@
 #include <OpenEXR/ImfTestFile.h>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/io/atomic_file.h"
 #include "core/io/exr_header_check.h"
 #include "core/io/oiio_loader.h"
@@ -147,6 +148,7 @@ void checkSize(const std::string& path, long long w, long long h, long long chan
     if (w > (long long)kMaxPixels || h > (long long)kMaxPixels || w * h > (long long)kMaxPixels)
         fail(path, ": image of ", w, "x", h, " pixels exceeds the limit of 2^28 pixels");
     if (channels > 1024) fail(path, ": absurd channel count ", channels);
+    chargeMemory(uint64_t(w * h * channels) * sizeof(float), strCat(path, ": image of ", w, "x", h, "x", channels, " floats"));
 }
 
 /// True if the file is an OpenEXR file without deep data: OpenEXR's test of the magic number

@@ -1,11 +1,11 @@
 #include "core/io/obj_reader.h"
 
 #include <charconv>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/io/whole_file.h"
+#include "core/memory_budget.h"
 
 namespace iris {
 namespace {
@@ -161,13 +161,14 @@ private:
 
 TriangleMesh parseObj(const std::string& text, const std::string& name) { return ObjParser(name).parse(text); }
 
+// OBJ has no header that counts its vertices and faces: the file is charged before it is read, the
+// mesh (at most a small multiple of the file) when parsed, before the scene keeps it.
 TriangleMesh readObj(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, ": cannot open OBJ file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) fail(path, ": read error");
-    return parseObj(ss.str(), path);
+    TriangleMesh m = parseObj(readWholeFile(path, "OBJ file"), path);
+    const uint64_t held = m.positions.size() * sizeof(vec3) + m.normals.size() * sizeof(vec3) +
+                          m.uvs.size() * sizeof(vec2) + m.indices.size() * sizeof(uint32_t);
+    chargeMemory(held, strCat(path, ": ", m.positions.size(), " vertices and ", m.triangleCount(), " triangles"));
+    return m;
 }
 
 }  // namespace iris

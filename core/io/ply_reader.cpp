@@ -3,10 +3,9 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
-#include <fstream>
-#include <sstream>
-
 #include "core/error.h"
+#include "core/io/whole_file.h"
+#include "core/memory_budget.h"
 
 namespace iris {
 namespace {
@@ -235,6 +234,8 @@ private:
         if (pos[0] < 0 || pos[1] < 0 || pos[2] < 0) error("vertex element lacks x, y or z");
         const bool hasN = nrm[0] >= 0 && nrm[1] >= 0 && nrm[2] >= 0;
         const bool hasUV = uv[0] >= 0 && uv[1] >= 0;
+        const uint64_t perVertex = sizeof(vec3) * (hasN ? 2 : 1) + (hasUV ? sizeof(vec2) : 0);
+        chargeMemory(e.count * perVertex, strCat(name_, ": ", e.count, " vertices (PLY header)"));
         m.positions.resize(e.count);
         if (hasN) m.normals.resize(e.count);
         if (hasUV) m.uvs.resize(e.count);
@@ -259,6 +260,8 @@ private:
         }
         if (listIndex < 0) error("face element lacks a vertex_indices list");
         if (!isInteger(e.props[size_t(listIndex)].type)) error("face indices must be integers");
+        // At least one triangle per face; larger polygons are fanned into more as they are read.
+        chargeMemory(e.count * 3 * sizeof(uint32_t), strCat(name_, ": ", e.count, " faces (PLY header)"));
         std::vector<uint32_t> poly;
         for (uint64_t f = 0; f < e.count; ++f) {
             for (int i = 0; i < int(e.props.size()); ++i) {
@@ -294,13 +297,6 @@ private:
 
 TriangleMesh parsePly(const std::string& data, const std::string& name) { return PlyParser(data, name).parse(); }
 
-TriangleMesh readPly(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, ": cannot open PLY file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) fail(path, ": read error");
-    return parsePly(ss.str(), path);
-}
+TriangleMesh readPly(const std::string& path) { return parsePly(readWholeFile(path, "PLY file"), path); }
 
 }  // namespace iris

@@ -1,12 +1,12 @@
 #include "core/io/serialized_reader.h"
 
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include <zlib.h>
 
 #include "core/error.h"
+#include "core/io/whole_file.h"
+#include "core/memory_budget.h"
 
 namespace iris {
 namespace {
@@ -19,14 +19,7 @@ constexpr uint32_t kHasNormals = 0x0001, kHasUVs = 0x0002, kHasColors = 0x0008, 
 // zlib's deflate cannot compress better than about 1032:1; anything claiming more is corrupt.
 constexpr uint64_t kMaxZlibRatio = 1100;
 
-std::string readAll(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, ": cannot open serialized mesh file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) fail(path, ": read error");
-    return ss.str();
-}
+std::string readAll(const std::string& path) { return readWholeFile(path, "serialized mesh file"); }
 
 template <typename T>
 T readLE(const std::string& d, size_t at) {
@@ -179,6 +172,10 @@ SerializedMesh readSerialized(const std::string& path, int shapeIndex) {
     if (needed > maxBytes) fail(where, ": vertex/triangle counts (", nv, ", ", nt, ") exceed what the file can hold");
     if (nv == 0 || nt == 0) fail(where, ": empty mesh");
     if (wideIndices) fail(where, ": more than 2^32 vertices are not supported");
+    // What the mesh will hold (float vectors, 32-bit indices; colours are read and dropped).
+    const uint64_t held = nv * (sizeof(vec3) * (1 + ((flags & kHasNormals) ? 1 : 0) + ((flags & kHasColors) ? 1 : 0)) +
+                                ((flags & kHasUVs) ? sizeof(vec2) : 0)) + nt * 3 * sizeof(uint32_t);
+    chargeMemory(held, strCat(where, ": ", nv, " vertices and ", nt, " triangles"));
 
     SerializedMesh out;
     TriangleMesh& m = out.mesh;

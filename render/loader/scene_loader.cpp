@@ -1,6 +1,8 @@
 #include "render/loader/scene_loader.h"
 
+#include "core/memory_budget.h"
 #include "core/xml/xml_parser.h"
+#include "render/film.h"
 #include "render/films/film_description.h"
 #include "render/integrator.h"
 #include "render/lights/light.h"
@@ -36,6 +38,11 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
     const FilmDescription film =
         c.film ? *FilmRegistry::instance().create(*c.film)
                : *FilmRegistry::instance().create(Properties("film", "hdrfilm", p.location()));
+    // The film's sums and the three 3-channel float images written from them (EXR, mean, LDR).
+    const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
+    withLocation(p.location(), [&] {
+        chargeMemory(pixels * (Film::kStateBytesPerPixel + 9 * sizeof(float)), strCat("film of ", film.width, "x", film.height, " pixels"));
+    });
     CameraDescription& cam = scene.camera;
     cam.width = film.width;
     cam.height = film.height;
@@ -90,6 +97,7 @@ void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, 
 /// Every top-level object is loaded even after one fails, so that a file with several problems
 /// reports all of them at once: one iris::Error whose lines are the "file:line: problem" messages.
 SceneDescription build(ParsedScene parsed) {
+    MemoryAccount memory;  // the meshes, textures and film this scene holds (core/memory_budget.h)
     SceneDescription scene;
     scene.sourceFile = parsed.sourceFile;
     bool haveSensor = false, haveIntegrator = false;
@@ -111,6 +119,7 @@ SceneDescription build(ParsedScene parsed) {
         for (const std::string& m : problems) all += (all.empty() ? "" : "\n") + m;
         fail(all);
     }
+    scene.memory = memory.take();
     return scene;
 }
 

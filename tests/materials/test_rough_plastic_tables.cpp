@@ -1,12 +1,15 @@
 // Rough dielectric transmittance tables: brute-force integrals (limits, reciprocity), Catmull-Rom
 // interpolation error against brute force on random points, disk cache (round trip, corrupt
-// files rebuilt), and laziness (only rough-plastic-type materials acquire the tables).
+// files rebuilt, concurrent writers), and laziness (only rough-plastic-type materials acquire the tables).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -145,6 +148,44 @@ TEST(RoughPlasticTables, CacheRoundTripAndCorruptFilesAreRebuilt) {
     EXPECT_EQ(loadOrBuildRoughTables(path, MicrofacetType::GGX, res).diffuse, fresh.diffuse);
     { std::ofstream(path, std::ios::binary | std::ios::trunc) << "not a table"; }
     EXPECT_EQ(loadOrBuildRoughTables(path, MicrofacetType::GGX, res).ext, fresh.ext);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(RoughPlasticTables, CacheSurvivesConcurrentWritersAndReaders) {
+    // Two renders starting together both find no cache, both build and both write it (issue 19
+    // item 4): writes are atomic renames, so a reader racing them sees no file or a whole one,
+    // never a mixed or partial one, and the file left behind is valid.
+    const std::string dir = tempDir("concurrent");
+    const std::string path = dir + "/t.bin";
+    const RoughTableResolution res = tinyRes();
+    const RoughTransmittanceTables fresh = buildRoughTables(MicrofacetType::GGX, res);
+    std::atomic<bool> writing{true};
+    std::atomic<int> wholeReads{0}, badReads{0};
+    std::thread reader([&] {
+        while (writing) {
+            std::string why;
+            if (auto t = readRoughTables(path, MicrofacetType::GGX, res, &why)) {
+                wholeReads += t->ext == fresh.ext && t->diffuse == fresh.diffuse;
+            } else if (why != "missing") {
+                ++badReads;
+            }
+        }
+    });
+    std::vector<std::thread> writers;
+    std::vector<RoughTransmittanceTables> got(4);
+    for (int round = 0; round < 20; ++round) {
+        std::filesystem::remove(path);
+        writers.clear();
+        for (size_t i = 0; i < got.size(); ++i)
+            writers.emplace_back([&, i] { got[i] = loadOrBuildRoughTables(path, MicrofacetType::GGX, res); });
+        for (std::thread& w : writers) w.join();
+        for (const RoughTransmittanceTables& t : got) EXPECT_EQ(t.ext, fresh.ext);
+    }
+    writing = false;
+    reader.join();
+    EXPECT_EQ(badReads, 0);  // a partial or mixed file would fail the size or checksum test
+    std::string why;
+    EXPECT_TRUE(readRoughTables(path, MicrofacetType::GGX, res, &why).has_value()) << why;
     std::filesystem::remove_all(dir);
 }
 
