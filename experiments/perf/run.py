@@ -7,7 +7,7 @@ relevant run with `perf record` and summarises where the time goes.
 
 Writes <out>/report.md, <out>/measurements.json, <out>/targets.csv and <out>/profiles/*.txt
 (default out: experiments/perf/results). Needs the benchmarks built in --build (default build-perf,
-configured with -DIRIS_BUILD_BENCHMARKS=ON): render, bench_render, bench_perf_thinfilm,
+configured with -DIRIS_BUILD_BENCHMARKS=ON): render, bench_perf_thinfilm,
 bench_perf_tables. Timings are never pass/fail tests: every figure is a ratio or value measured in
 this run, next to its target.
 """
@@ -168,35 +168,60 @@ def bench_value(js, name_re, field):
     return None
 
 
-def t1_shading_overhead(ctx):
-    """Renderer rays/s (1 thread, spp 1 per iteration) / bare Embree closest-hit rays/s."""
-    res = {}
-    for label, scene in [("default", os.path.join(REPO, "scenes", "default.xml")),
-                         ("bunny", os.path.join(SCENES, "bunny.xml"))]:
-        js, _ = ctx.bench_json("bench_render", f"--scene={scene}",
-                               "--benchmark_filter=BM_BareEmbreeClosestHit|BM_RendererPathTracing/(0|4)$",
-                               f"--benchmark_min_time={0.3 if ctx.quick else 1.5}")
-        bare = bench_value(js, r"BM_BareEmbreeClosestHit", "rays/s")
-        rgb = bench_value(js, r"BM_RendererPathTracing/0", "rays/s")
-        n4 = bench_value(js, r"BM_RendererPathTracing/4", "rays/s")
-        # Wall vs CPU of the bare run tells how much the machine's load distorted the rates.
-        bare_rt = bench_value(js, r"BM_BareEmbreeClosestHit", "real_time")
-        bare_ct = bench_value(js, r"BM_BareEmbreeClosestHit", "cpu_time")
-        res[label] = {"bare_rays_per_s": bare, "renderer_rgb_rays_per_s": rgb, "renderer_spectral4_rays_per_s": n4,
-                      "ratio_rgb": rgb / bare, "ratio_spectral4": n4 / bare, "bare_cpu_over_wall": bare_ct / bare_rt}
-        for mode, key in [("RGB", "ratio_rgb"), ("spectral N=4", "ratio_spectral4")]:
-            r = res[label][key]
-            ctx.row("1", f"Shading overhead, {label} scene, {mode}: renderer rays/s ÷ bare Embree rays/s",
-                    f"{100 * r:.1f} % ({res[label]['renderer_rgb_rays_per_s' if mode == 'RGB' else 'renderer_spectral4_rays_per_s'] / 1e6:.2f} M vs {bare / 1e6:.2f} M rays/s)",
-                    "≥ 60 %", r >= 0.6, f"{100 * (r - 0.6):+.1f} points")
-    ctx.m["shading_overhead"] = res
-    if any(v["ratio_spectral4"] < 0.6 or v["ratio_rgb"] < 0.6 for v in res.values()):
-        perf_profile(ctx, "shading_overhead_default",
-                     [ctx.exe("bench_render"), f"--scene={os.path.join(REPO, 'scenes', 'default.xml')}",
-                      "--benchmark_filter=BM_RendererPathTracing/4$", "--benchmark_min_time=2"])
-        perf_profile(ctx, "shading_overhead_bunny",
-                     [ctx.exe("bench_render"), f"--scene={os.path.join(SCENES, 'bunny.xml')}",
-                      "--benchmark_filter=BM_RendererPathTracing/4$", "--benchmark_min_time=2"])
+# Target 1 (issue 17 item 5): rays per CPU second per scene. The retired target compared the renderer
+# with bare Embree traversal; what a user compares is time per ray on the scenes they render.
+RAY_RATE_SCENES = [  # label, scene file, -D defines (the image size is added), what the scene stresses
+    ("two spheres", os.path.join(SCENES, "two_spheres.xml"), [], "analytic spheres: rough plastic, glass"),
+    ("bunny", os.path.join(SCENES, "bunny.xml"), [], "144 k triangles under an environment map"),
+    ("dragon", os.path.join(SCENES, "mesh.xml"), ["mesh=dragon.ply"], "871 k triangles, diffuse, constant sky"),
+    ("default", os.path.join(REPO, "scenes", "default.xml"), [], "the built-in scene"),
+    ("thin film", os.path.join(REPO, "scenes", "thinfilm_spheres.xml"), [], "thin-film spheres (Airy per bounce)"),
+]
+
+
+def ray_rates(ctx, scene, defines, spp_lo, spp_hi, reps, modes, min_cpu):
+    """Rays per CPU second (1 thread) for each mode: the difference of the `iris.rays` counts and
+    of the process CPU times between two sample counts, so that start-up and scene loading cancel;
+    the modes interleaved run by run. The gap between the counts grows 4× until the difference is
+    at least `min_cpu` seconds (a scene whose rays mostly miss, say). Returns {mode: (median rate,
+    [rates], median CPU difference)} and the sample counts used."""
+    for mode in modes:  # warm-up: builds the rough-plastic table cache, which later runs only read
+        ctx.render(scene, spp=1, mode=mode, defines=defines)
+    for _ in range(4):
+        lo, _m = ctx.render(scene, spp=spp_lo, mode=modes[0], defines=defines)
+        hi, _m = ctx.render(scene, spp=spp_hi, mode=modes[0], defines=defines)
+        if hi.cpu - lo.cpu >= min_cpu:
+            break
+        spp_hi = spp_lo + 4 * (spp_hi - spp_lo)
+    runs = {m: ([], []) for m in modes}
+    for _ in range(reps):
+        for mode in modes:
+            lo, mlo = ctx.render(scene, spp=spp_lo, mode=mode, defines=defines)
+            hi, mhi = ctx.render(scene, spp=spp_hi, mode=mode, defines=defines)
+            dcpu = max(hi.cpu - lo.cpu, 1e-3)
+            runs[mode][0].append((int(mhi["iris.rays"]) - int(mlo["iris.rays"])) / dcpu)
+            runs[mode][1].append(hi.cpu - lo.cpu)
+    return {m: (median(r), r, median(d)) for m, (r, d) in runs.items()}, [spp_lo, spp_hi]
+
+
+def t1_ray_rates(ctx):
+    res_px = 64 if ctx.quick else 128
+    spp_lo, spp_hi, reps = (2, 34, 1) if ctx.quick else (4, 36, 3)
+    out = {"res": res_px, "spp": [spp_lo, spp_hi], "reps": reps, "scenes": {}}
+    for label, scene, defines, what in RAY_RATE_SCENES:
+        size = [f"width={res_px}", f"height={res_px * 3 // 4}"] if "two_spheres" in scene else [f"res={res_px}"]
+        r, spp = ray_rates(ctx, scene, defines + size, spp_lo, spp_hi, reps, [4, "rgb"], 0.2 if ctx.quick else 0.6)
+        out["scenes"][label] = {"file": os.path.relpath(scene, REPO), "defines": defines + size, "what": what, "spp": spp,
+                                "rgb_rays_per_cpu_s": r["rgb"][0], "spectral4_rays_per_cpu_s": r[4][0],
+                                "rgb_runs": r["rgb"][1], "spectral4_runs": r[4][1], "cpu_s_difference": r[4][2]}
+        ctx.row("1", f"Rays per CPU second, {label} ({what}; reported, no target)",
+                f"{r[4][0] / 1e6:.2f} M spectral N = 4, {r['rgb'][0] / 1e6:.2f} M RGB", "—", None, "")
+    ctx.m["ray_rates"] = out
+    perf_profile(ctx, "ray_rate_two_spheres",
+                 ctx.render_cmd(os.path.join(SCENES, "two_spheres.xml"), spp=16,
+                                defines=["width=160", "height=120"])[0])
+    perf_profile(ctx, "ray_rate_default", ctx.render_cmd(os.path.join(REPO, "scenes", "default.xml"), spp=16,
+                                                         defines=["res=128"])[0])
 
 
 def cpu_per_spp_interleaved(ctx, scene, spp_lo, spp_hi, reps, variants):
@@ -593,15 +618,16 @@ def cmake_build_type(build):
 def method_text(ctx):
     m = ctx.m
     L = ["## How each figure is measured\n"]
-    L.append("1. `bench_render --scene=FILE` (Google Benchmark): bare Embree `rtcIntersect1` over a fixed batch "
-             "of primary rays plus one cosine-distributed bounce per hit, versus the full renderer "
-             "(1 thread, 1 spp per iteration, 128×128) counting every ray it traces (camera, bounce and shadow rays). "
-             "Scenes: `scenes/default.xml` and `experiments/perf/scenes/bunny.xml` (bunny + museum envmap). "
-             "Both rates are per CPU second of the benchmark thread.")
-    if "shading_overhead" in m:
-        so = m["shading_overhead"]
-        L.append("   CPU/wall of the bare run: " + ", ".join(f"{k} {v['bare_cpu_over_wall']:.2f}" for k, v in so.items())
-                 + " (below 1 = the benchmark waited for a CPU).")
+    if "ray_rates" in m:
+        rr = m["ray_rates"]
+        L.append(f"1. Rays per CPU second: `render FILE --threads 1` at two sample counts A < B ({rr['res']} px wide; "
+                 "A and B per scene below), rate = (rays(B) − rays(A)) / (CPU(B) − CPU(A)) with the `iris.rays` count of the EXR metadata (camera, bounce and shadow rays) "
+                 f"and the process CPU time, median of {rr['reps']}, RGB and spectral N = 4 interleaved run by run. "
+                 f"B starts at {rr['spp'][1]} and grows 4× while CPU(B) − CPU(A) is under 0.6 s (0.2 s quick). "
+                 "A 1-spp run of each scene and mode before the measurement fills the table cache. "
+                 "Scenes: " + "; ".join(f"{k}: `{v['file']}` `-D {' -D '.join(v['defines'])}`, {v['spp'][0]}/{v['spp'][1]} spp"
+                                        for k, v in rr["scenes"].items())
+                 + ". This replaces the retired ratio to bare Embree traversal (issue 17).")
     if "spectral_cost" in m:
         s = m["spectral_cost"]
         L.append(f"2. `render scenes/thinfilm_spheres.xml --threads 1 -D res={s['res']}` in RGB mode and with "
@@ -746,7 +772,7 @@ def wins_text(ctx):
                  "or writing the divisions as `a * conj(b) / norm(b)` inlines them. Expected gain: most of that share. "
                  f"`csqrt`, `cexp`, `hypot`, `sincos` take another {cx:.0f} %; for a lossless film (real ñ₁ below the "
                  "critical angle) the phase factor e^{2iδ} is a single `sincos`, and |r|² needs no `hypot`.")
-    for name in ["shading_overhead_bunny", "shading_overhead_default"]:
+    for name in ["ray_rate_two_spheres", "ray_rate_default"]:
         if name in P:
             p = P[name]
             env, rgb, d65 = share(p, r"EnvMapLight::lookup"), share(p, r"RGBSpectrum::eval"), share(p, r"cie::d65")
@@ -778,7 +804,7 @@ def wins_text(ctx):
                  "lines can be collapsed once per material into one μ-line of `nMu` values per channel (exact, "
                  "same result), and Fdr cached: `eval` then reads 4 nodes instead of 64 and `getBSDF` does no "
                  "table work. Expected gain: most of the table share above, i.e. most of the gap to Granier.")
-    for name in ["shading_overhead_default"]:
+    for name in ["ray_rate_default"]:
         if name in P:
             p = P[name]
             wl = share(p, r"sampleVisible|d65Lanes")
@@ -860,7 +886,7 @@ def main():
     ap.add_argument("--only", default="1234567", help="targets to measure (digits), default all")
     args = ap.parse_args()
     ctx = Ctx(args)
-    for exe in ["render", "bench_render", "bench_perf_thinfilm", "bench_perf_tables"]:
+    for exe in ["render", "bench_perf_thinfilm", "bench_perf_tables"]:
         if not os.path.exists(ctx.exe(exe)):
             sys.exit(f"run.py: {ctx.exe(exe)} not found: build it (cmake -DIRIS_BUILD_BENCHMARKS=ON; ninja {exe})")
     # Every binary must be built from the current sources: a report that names this commit but ran a
@@ -874,15 +900,15 @@ def main():
                     t = os.path.getmtime(os.path.join(root, f))
                     if t > newest:
                         newest, newest_src = t, os.path.join(root, f)
-    for exe in ["render", "bench_render", "bench_perf_thinfilm", "bench_perf_tables"]:
+    for exe in ["render", "bench_perf_thinfilm", "bench_perf_tables"]:
         if os.path.getmtime(ctx.exe(exe)) < newest:
             sys.exit(f"run.py: {ctx.exe(exe)} is older than {os.path.relpath(newest_src, REPO)}: rebuild "
-                     f"(ninja -C {args.build} render bench_render bench_perf_thinfilm bench_perf_tables) first")
+                     f"(ninja -C {args.build} render bench_perf_thinfilm bench_perf_tables) first")
     os.makedirs(ctx.out, exist_ok=True)
     shutil.rmtree(os.path.join(ctx.out, "profiles"), ignore_errors=True)
     started = datetime.datetime.utcnow().isoformat(timespec="seconds") + "Z"
     ctx.sample_load("start")
-    steps = [("1", t1_shading_overhead), ("2", t2_spectral_cost), ("3", t3_thesis_models), ("4", t4_thin_film),
+    steps = [("1", t1_ray_rates), ("2", t2_spectral_cost), ("3", t3_thesis_models), ("4", t4_thin_film),
              ("5", t5_tables), ("6", t6_startup), ("7", t7_scaling_memory)]
     for key, fn in steps:
         if key not in args.only:
