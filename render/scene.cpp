@@ -7,6 +7,7 @@
 #include "core/properties.h"
 #include "core/registry.h"
 #include "materials/material.h"
+#include "render/sphere_intersection.h"
 
 namespace iris {
 
@@ -21,6 +22,50 @@ void embreeError(void*, RTCError code, const char* str) {
     // Errors during building are checked through rtcGetDeviceError; this only keeps Embree quiet.
     (void)code;
     (void)str;
+}
+
+// Spheres are Embree user geometry (one primitive each) intersected analytically in double
+// precision (render/sphere_intersection.h). The scene only calls rtcIntersect1 and
+// rtcOccluded1, so Embree calls these with one ray (N = 1).
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+    const auto* s = static_cast<const ShapeDescription*>(args->geometryUserPtr);
+    // Padded by a few float ulps of the extent so that rounding the bounds to float never clips.
+    const float pad = 1e-6f * (s->radius + std::max({std::abs(s->center.x), std::abs(s->center.y), std::abs(s->center.z)}));
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = s->center.x - s->radius - pad;
+    b->lower_y = s->center.y - s->radius - pad;
+    b->lower_z = s->center.z - s->radius - pad;
+    b->upper_x = s->center.x + s->radius + pad;
+    b->upper_y = s->center.y + s->radius + pad;
+    b->upper_z = s->center.z + s->radius + pad;
+}
+
+double sphereHit(const ShapeDescription& s, const RTCRay& r) {
+    return intersectSphere(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), dvec3(s.center),
+                           double(s.radius), double(r.tnear), double(r.tfar));
+}
+
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
+    RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(args->rayhit);
+    const double t = sphereHit(s, rh.ray);
+    if (!std::isfinite(t)) return;
+    rh.ray.tfar = float(t);  // ≤ the old tfar: rounding is monotone and the old tfar is a float
+    rh.hit.Ng_x = float(rh.ray.org_x + t * rh.ray.dir_x - s.center.x);  // Scene::intersect renormalises
+    rh.hit.Ng_y = float(rh.ray.org_y + t * rh.ray.dir_y - s.center.y);
+    rh.hit.Ng_z = float(rh.ray.org_z + t * rh.ray.dir_z - s.center.z);
+    rh.hit.u = rh.hit.v = 0.0f;
+    rh.hit.primID = args->primID;
+    rh.hit.geomID = args->geomID;
+    rh.hit.instID[0] = args->context->instID[0];
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;
+    const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
+    RTCRay& r = *reinterpret_cast<RTCRay*>(args->ray);
+    if (std::isfinite(sphereHit(s, r))) r.tfar = -std::numeric_limits<float>::infinity();
 }
 
 void checkDevice(RTCDevice device, const char* what) {
@@ -69,13 +114,12 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
             if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), s.emission));
         } else {
             if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
-            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-            float* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-            v[0] = s.center.x;
-            v[1] = s.center.y;
-            v[2] = s.center.z;
-            v[3] = s.radius;
+            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(geom, 1);
+            rtcSetGeometryUserData(geom, const_cast<ShapeDescription*>(&s));
+            rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
+            rtcSetGeometryIntersectFunction(geom, sphereIntersect);
+            rtcSetGeometryOccludedFunction(geom, sphereOccluded);
             lo = glm::min(lo, s.center - vec3(s.radius));
             hi = glm::max(hi, s.center + vec3(s.radius));
             if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, s.emission));

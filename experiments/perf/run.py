@@ -172,8 +172,8 @@ def bench_value(js, name_re, field):
 # with bare Embree traversal; what a user compares is time per ray on the scenes they render.
 RAY_RATE_SCENES = [  # label, scene file, -D defines (the image size is added), what the scene stresses
     ("two spheres", os.path.join(SCENES, "two_spheres.xml"), [], "analytic spheres: rough plastic, glass"),
-    ("bunny", os.path.join(SCENES, "bunny.xml"), [], "144 k triangles under an environment map"),
-    ("dragon", os.path.join(SCENES, "mesh.xml"), ["mesh=dragon.ply"], "871 k triangles, diffuse, constant sky"),
+    ("bunny", os.path.join(SCENES, "bunny.xml"), [], "69 k triangles under an environment map"),
+    ("dragon", os.path.join(SCENES, "mesh.xml"), ["mesh=dragon.ply"], "100 k triangles, diffuse, constant sky"),
     ("default", os.path.join(REPO, "scenes", "default.xml"), [], "the built-in scene"),
     ("thin film", os.path.join(REPO, "scenes", "thinfilm_spheres.xml"), [], "thin-film spheres (Airy per bounce)"),
 ]
@@ -670,7 +670,7 @@ def method_text(ctx):
 def where_time_goes(ctx):
     if not ctx.profiles:
         return "## Where the time goes\n\nNo target was missed that needed a profile (or perf was disabled).\n"
-    L = ["## Where the time goes (perf profiles of the missed targets)\n",
+    L = ["## Where the time goes (perf profiles: the ray-rate scenes and the missed targets)\n",
          "`perf record -F 2000` of the run named; self time by shared object and the top functions "
          "(≥ 0.5 %). Full lists in `profiles/`.\n"]
     for name, p in ctx.profiles.items():
