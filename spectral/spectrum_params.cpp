@@ -36,6 +36,8 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
     if (const float* f = std::get_if<float>(&e.value)) return spectrumFromNumber(*f, kind);
     if (const int64_t* i = std::get_if<int64_t>(&e.value)) return spectrumFromNumber(float(*i), kind);
     if (const RGBValue* c = std::get_if<RGBValue>(&e.value)) return makeRGBSpectrum(c->rgb, kind);
+    if (const PropertiesPtr* obj = std::get_if<PropertiesPtr>(&e.value); obj && (*obj)->tag() == "spectrum")
+        return SpectrumRegistry::instance().create(**obj, kind);
     if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) {
         // An emitter's single-valued <spectrum> in a version 2/3 scene: Mitsuba 3's flat spectrum
         // (RGB mode: its sRGB colour); version 0.x: value × D65 like a number (spectrumFromNumber).
@@ -49,7 +51,7 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
         if (kind != SpectrumKind::Unbounded) spec = withMitsubaRGBModeValue(spec, MitsubaTableSource::SceneValue, p.formatVersion());
         return spec;
     }
-    p.typeError(name, "spectrum (float, rgb, spectrum or blackbody)");
+    p.typeError(name, "spectrum (float, rgb, spectrum or blackbody value, or a <spectrum type=...> object)");
 }
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def) {
     return p.present(name) ? getSpectrum(p, name, kind) : spectrumFromNumber(def, kind);

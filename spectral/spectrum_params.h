@@ -7,11 +7,18 @@
 #include <string>
 
 #include "core/properties.h"
+#include "core/registry.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
 
-/// Spectrum from a float, rgb, spectrum or blackbody value; a located error when missing or of
+/// Spectrum plugins, `<spectrum type="regular" name="...">...</spectrum>` (Mitsuba 3's objects:
+/// uniform, regular, irregular, blackbody, d65, srgb; spectral/spectrum_plugins.cpp), created for
+/// the kind of the parameter they are given to.
+using SpectrumRegistry = Registry<const Spectrum, SpectrumKind>;
+
+/// Spectrum from a float, rgb, spectrum or blackbody value or a spectrum plugin object
+/// (SpectrumRegistry); a located error when missing or of
 /// another type. A plain number given to an emitter (Illuminant kind) is that multiple of D65 with
 /// Y = 1, as in Mitsuba 3. A single-valued <spectrum> of an emitter follows the scene's version:
 /// Mitsuba 3's flat spectrum for 2.x/3.x (mitsuba3UniformEmission, spectral/mitsuba_rgb.h),

@@ -236,7 +236,10 @@ private:
         for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling()) {
             if (c.type() != pugi::node_element) continue;
             const std::string tag = c.name();
-            if (kValueTags.count(tag)) {
+            if (tag == "spectrum" && c.attribute("type")) {  // a spectrum plugin (Mitsuba 3), given by name
+                if (!c.attribute("name")) failAt(loc(c), "<spectrum type=\"", attr(c, "type"), "\"> needs a name");
+                props->set(paramName(c), parseObject(c, depth + 1), loc(c));
+            } else if (kValueTags.count(tag)) {
                 parseValue(c, *props);
             } else if (kObjectTags.count(tag)) {
                 PropertiesPtr child = parseObject(c, depth + 1);

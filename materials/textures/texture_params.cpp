@@ -7,12 +7,12 @@ namespace iris {
 
 SpectrumTexturePtr getSpectrumTexture(const Properties& props, const std::string& name, SpectrumKind kind) {
     const Properties::Entry& e = props.require(name);
-    if (const PropertiesPtr* p = std::get_if<PropertiesPtr>(&e.value)) {
+    if (const PropertiesPtr* p = std::get_if<PropertiesPtr>(&e.value); p && (*p)->tag() != "spectrum") {
         const Properties& tp = **p;
         if (tp.tag() != "texture") failAt(e.loc, "parameter '", name, "' must be a texture or spectrum, not a ", tp.tag());
         return SpectrumTextureRegistry::instance().create(tp, kind);
     }
-    return constantTexture(getSpectrum(props, name, kind));
+    return constantTexture(getSpectrum(props, name, kind));  // a value or a <spectrum type=...> plugin
 }
 SpectrumTexturePtr getSpectrumTexture(const Properties& props, const std::string& name, SpectrumKind kind, float def) {
     return props.present(name) ? getSpectrumTexture(props, name, kind) : constantTexture(spectrumFromNumber(def, kind));
