@@ -33,7 +33,11 @@ public:
     static FixedSum toFixed(float v) {
         if (std::isnan(v)) return 0;  // the renderer drops invalid samples before; never UB here
         const double d = std::clamp(double(v), -kMaxSampleValue, kMaxSampleValue) * 0x1p48;  // exact
-        return FixedSum(std::nearbyint(d));  // round to nearest (even): the only rounding of a sample
+        const double r = std::nearbyint(d);  // round to nearest (even): the only rounding of a sample
+        // Below 2^63 the integer fits an int64_t, whose conversion is one instruction; the 128-bit
+        // conversion is a libgcc call (__fixdfti). Both are exact for an integer-valued double.
+        if (std::abs(r) < 0x1p63) return FixedSum(int64_t(r));
+        return FixedSum(r);
     }
 
     /// Bytes per pixel of the sums and counts (the loader charges them to the memory budget).

@@ -2,6 +2,9 @@
 // the film's mean and counts are exact, and invalid estimates never reach a pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "render/film.h"
 #include "core/registry.h"
 #include "render/renderer.h"
@@ -114,4 +117,17 @@ TEST(Film, InvalidSamplesAreCountedAndDropped) {
     EXPECT_GT(st.invalidSamples, 0u);
     for (float v : film.meanImage()) EXPECT_TRUE(std::isfinite(v));
     EXPECT_EQ(st.sppMin, 4u);
+}
+
+TEST(Film, FixedPointConversionIsExactOnBothSidesOfTheInt64FastPath) {
+    // toFixed converts through int64_t below 2^63 (sample values below 2^15) and through the
+    // 128-bit conversion above; both must give the integer nearest to v · 2^48 exactly.
+    for (const float v : {0.0f, 1.0f, -1.0f, 0.1f, 3.3e-15f, 32767.998f, 32768.0f, 32768.004f, -32768.0f, -40000.5f,
+                          1e9f, -1e9f, 0x1p47f, -0x1p47f, 1e30f}) {
+        const double d = std::clamp(double(v), -Film::kMaxSampleValue, Film::kMaxSampleValue) * 0x1p48;
+        const Film::FixedSum expect = Film::FixedSum(std::nearbyint(d));  // the generic conversion
+        EXPECT_TRUE(Film::toFixed(v) == expect) << v;
+        // Independent check of the value: the sum of the parts recovers d exactly.
+        EXPECT_EQ(double(Film::toFixed(v)), std::nearbyint(d)) << v;
+    }
 }
