@@ -22,6 +22,11 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     });
 }
 
+SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, int formatVersion) {
+    if (kind == SpectrumKind::Unbounded) return spec;
+    return withMitsubaRGBModeValue(std::move(spec), MitsubaTableSource::SceneValue, formatVersion);
+}
+
 /// A plain number as a spectrum, given as <float> (or as a single-valued <spectrum> in a version 0.x
 /// scene). Emitters multiply it by D65 with Y = 1 (Mitsuba 3 for a number: `d65` / `srgb` (v, v, v);
 /// Mitsuba 0.6 for both forms, intent "illuminant"; issue 14 item 7), so it renders the same white,
@@ -43,13 +48,7 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
         // (RGB mode: its sRGB colour); version 0.x: value × D65 like a number (spectrumFromNumber).
         if (s->type == SpectrumValue::Type::Constant && kind == SpectrumKind::Illuminant && p.formatVersion() >= 2)
             return mitsuba3UniformEmission(s->constant);
-        SpectrumPtr spec = spectrumFromValue(*s, kind, e.loc);
-        // A tabulated reflectance or emission (λ:value pairs, a .spd file) renders in RGB mode with
-        // the RGB value Mitsuba's RGB variant of the scene's version computes (spectral/mitsuba_rgb.h).
-        // Unbounded tables keep the channel-wavelength rule (spectral/spectrum.h) except where a
-        // plugin asks for Mitsuba's (conductor eta/k, spectral/ior_params.cpp).
-        if (kind != SpectrumKind::Unbounded) spec = withMitsubaRGBModeValue(spec, MitsubaTableSource::SceneValue, p.formatVersion());
-        return spec;
+        return withSceneTableRGBModeValue(spectrumFromValue(*s, kind, e.loc), kind, p.formatVersion());
     }
     p.typeError(name, "spectrum (float, rgb, spectrum or blackbody value, or a <spectrum type=...> object)");
 }

@@ -32,5 +32,11 @@ SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind);
 /// version 0.x scene for a single value (a number, see spectrumFromNumber) and the RGB-mode value
 /// of spectral/spectrum.h for tables (getSpectrum applies the version's rules).
 SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
+/// The RGB-mode rule of a scene's tabulated reflectance or emission (λ:v pairs, a .spd file, a
+/// regular/irregular plugin): rendered with the RGB value Mitsuba's RGB variant of the scene's
+/// version computes (spectral/mitsuba_rgb.h). Unbounded tables keep the channel-wavelength rule
+/// (spectral/spectrum.h) except where a plugin asks for Mitsuba's (conductor eta/k,
+/// spectral/ior_params.cpp). Non-tabulated spectra are returned as they are.
+SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, int formatVersion);
 
 }  // namespace iris

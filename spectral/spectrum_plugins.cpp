@@ -17,12 +17,10 @@ std::vector<float> floatList(const Properties& p, const std::string& name) {
     return parseFloatList(p.getString(name), p.locationOf(name));
 }
 
-/// A table read as Mitsuba reads a tabulated spectrum: RGB mode renders its projected sRGB value
-/// (spectral/mitsuba_rgb.h) except for unbounded quantities, which keep the channel wavelengths.
+/// A table with the RGB-mode rule of every tabulated scene spectrum (withSceneTableRGBModeValue).
 SpectrumPtr table(const Properties& p, std::vector<float> lambdas, std::vector<float> values, SpectrumKind kind) {
     SpectrumPtr s = withLocation(p.location(), [&] { return makePiecewiseLinearSpectrum(lambdas, values, kind); });
-    if (kind == SpectrumKind::Unbounded) return s;
-    return withMitsubaRGBModeValue(s, MitsubaTableSource::SceneValue, p.formatVersion());
+    return withSceneTableRGBModeValue(std::move(s), kind, p.formatVersion());
 }
 
 /// `uniform`: `value` (default 1) at every wavelength; for an emitter the flat (equal-energy)

@@ -161,13 +161,6 @@ def perf_profile(ctx, name, cmd, cwd=None):
 
 # ----------------------------------------------------------------------------- the targets
 
-def bench_value(js, name_re, field):
-    for b in js["benchmarks"]:
-        if re.fullmatch(name_re, b["name"]) and b.get("run_type", "iteration") == "iteration":
-            return b[field] if field in b else b.get("counters", {}).get(field)
-    return None
-
-
 # Target 1 (issue 17 item 5): rays per CPU second per scene. The retired target compared the renderer
 # with bare Embree traversal; what a user compares is time per ray on the scenes they render.
 RAY_RATE_SCENES = [  # label, scene file, -D defines (the image size is added), what the scene stresses
