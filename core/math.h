@@ -15,6 +15,7 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using dvec3 = glm::dvec3;
 using ivec2 = glm::ivec2;
+using ivec3 = glm::ivec3;
 using mat3 = glm::mat3;
 using mat4 = glm::mat4;
 

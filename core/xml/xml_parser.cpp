@@ -19,7 +19,7 @@ constexpr int kMaxIncludeDepth = 32;
 constexpr int kMaxNesting = 64;
 
 const std::set<std::string> kObjectTags = {"bsdf",    "texture", "emitter", "shape",  "sensor", "integrator",
-                                           "sampler", "film",    "rfilter", "medium", "phase"};
+                                           "sampler", "film",    "rfilter", "medium", "phase", "volume"};
 const std::set<std::string> kValueTags = {"float", "integer", "boolean", "string",    "point",    "vector",
                                           "rgb",   "srgb",    "color",   "spectrum", "blackbody", "transform"};
 

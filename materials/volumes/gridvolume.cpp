@@ -1,0 +1,195 @@
+// The `gridvolume` volume (Mitsuba 3 src/volumes/grid.cpp): a voxel grid read from a .vol file
+// (core/io/vol_reader.h). Parameters: filename; filter_type (trilinear | nearest, default
+// trilinear); wrap_mode (clamp | repeat | mirror, default clamp); to_world; raw (bool, default
+// false); use_grid_bbox (bool, default false); accel (accepted, no effect: CUDA texture hardware).
+//
+// Conventions of Mitsuba 3, followed here:
+//  - The grid fills the local unit cube [0,1]³ that to_world places in the world; the bounding box
+//    written in the file is ignored unless use_grid_bbox is true, in which case the file's box is
+//    mapped onto the unit cube first (grid.cpp: m_to_local = bbox_transform() · m_to_local;
+//    include/mitsuba/render/volumegrid.h, bbox_transform = scale(1/(max−min)) · translate(−min)).
+//  - Voxel (i, j, k) is the sample at the cell centre ((i+½)/xres, (j+½)/yres, (k+½)/zres):
+//    trilinear lookups take x·res − ½, its floor and fraction (Dr.Jit include/drjit/texture.h,
+//    Texture::eval_nonaccel, FilterMode::Linear); nearest lookups take floor(x·res)
+//    (FilterMode::Nearest). Both neighbours of a trilinear lookup are wrapped by index.
+//  - Wrap modes act on voxel indices (Dr.Jit Texture::wrap): clamp to [0, n−1]; repeat modulo n;
+//    mirror with period 2n, the edge voxel repeated (…, 1, 0 | 0, 1, …, n−1 | n−1, …).
+//  - 1-channel grids give the value in every lane; 3-channel grids are RGB. In RGB mode the
+//    channels are returned as they are; in spectral mode the trilinearly interpolated colour is
+//    upsampled with the SpectrumKind of the parameter (RGBSpectrumGrid, spectral/rgb_spectrum_grid.h).
+//    Mitsuba 3 instead interpolates the voxels' sigmoid coefficients and 2·max scales
+//    (grid.cpp, interpolate_spectral); the two agree at voxel centres up to the fits' accuracy.
+//    raw = true makes Mitsuba 3's spectral variants refuse a 3-channel grid; iris upsamples it
+//    anyway (raw has no effect in RGB mode in both). Other channel counts are refused at load.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/io/vol_reader.h"
+#include "materials/volumes/volume.h"
+#include "spectral/rgb_spectrum_grid.h"
+
+namespace iris {
+namespace {
+
+enum class Filter { Trilinear, Nearest };
+enum class Wrap { Clamp, Repeat, Mirror };
+
+Filter parseFilter(const Properties& p) {
+    const std::string s = p.getString("filter_type", "trilinear");
+    if (s == "trilinear") return Filter::Trilinear;
+    if (s == "nearest") return Filter::Nearest;
+    failAt(p.locationOf("filter_type"), "gridvolume: filter_type '", s, "' is not supported (supported: trilinear, nearest)");
+}
+
+Wrap parseWrap(const Properties& p) {
+    const std::string s = p.getString("wrap_mode", "clamp");
+    if (s == "clamp") return Wrap::Clamp;
+    if (s == "repeat") return Wrap::Repeat;
+    if (s == "mirror") return Wrap::Mirror;
+    failAt(p.locationOf("wrap_mode"), "gridvolume: wrap_mode '", s, "' is not supported (supported: clamp, repeat, mirror)");
+}
+
+/// Index i wrapped into [0, n) (Dr.Jit Texture::wrap).
+int64_t wrapIndex(int64_t i, int64_t n, Wrap w) {
+    if (w == Wrap::Clamp) return std::clamp<int64_t>(i, 0, n - 1);
+    if (w == Wrap::Repeat) return ((i % n) + n) % n;
+    const int64_t m = ((i % (2 * n)) + 2 * n) % (2 * n);  // mirror: period 2n
+    return m < n ? m : 2 * n - 1 - m;
+}
+
+/// floor(x) as an integer, x first limited to ±2^40 (points far outside the grid; every wrap
+/// mode gives the same voxels for them as for any point that far).
+int64_t floorIndex(float x) { return int64_t(std::floor(std::clamp(x, -1.0995116e12f, 1.0995116e12f))); }
+
+class GridVolume final : public Volume {
+public:
+    GridVolume(VolumeGridData data, const mat4& toWorld, Filter filter, Wrap wrap, SpectrumKind kind)
+        : Volume(toWorld), g_(std::move(data)), filter_(filter), wrap_(wrap), kind_(kind) {
+        range_.min = range_.max = g_.values.empty() ? 0.0f : g_.values[0];
+        for (float v : g_.values) range_.min = std::min(range_.min, v), range_.max = std::max(range_.max, v);
+        maxValue_ = laneBound(range_.max);
+    }
+
+    SampledSpectrum eval(const vec3& p, const SampledWavelengths& wl) const override {
+        const vec3 u = localPoint(p);
+        float c[3] = {0.0f, 0.0f, 0.0f};
+        if (filter_ == Filter::Nearest) nearest(u, c);
+        else trilinear(u, c);
+        if (g_.channels == 1) return SampledSpectrum(wl.size(), c[0]);
+        if (wl.isRGB()) {
+            SampledSpectrum s(3);
+            for (int i = 0; i < 3; ++i) s[i] = c[i];
+            return s;
+        }
+        return RGBSpectrumGrid::instance().sample(vec3(c[0], c[1], c[2]), kind_, wl);
+    }
+
+    float maxValue() const override { return maxValue_; }
+
+    float maxValueIn(const Box3& local) const override {
+        const int res[3] = {g_.xres, g_.yres, g_.zres};
+        std::vector<int> idx[3];
+        for (int a = 0; a < 3; ++a) idx[a] = touchedIndices(local.lo[a], local.hi[a], res[a]);
+        float m = -std::numeric_limits<float>::infinity();
+        for (int z : idx[2])
+            for (int y : idx[1])
+                for (int x : idx[0])
+                    for (int c = 0; c < g_.channels; ++c) m = std::max(m, g_.at(x, y, z, c));
+        return laneBound(m);
+    }
+
+    ValueRange range() const override { return range_; }
+    ivec3 resolution() const override { return ivec3(g_.xres, g_.yres, g_.zres); }
+
+private:
+    /// A bound over every lane of the values eval makes from colours whose channels are at most m:
+    /// a scalar is m; RGB mode gives the channels; spectral Unbounded upsampling is m·s(rgb/m)
+    /// with s in [0,1] (spectral/rgb_spectrum.h); Reflectance upsampling lies in [0,1].
+    float laneBound(float m) const {
+        if (g_.channels == 3 && kind_ == SpectrumKind::Reflectance && m > 0.0f) return std::max(m, 1.0f);
+        return m;
+    }
+
+    /// The wrapped voxel indices along one axis whose values influence a lookup at a local
+    /// coordinate in [lo, hi] (both trilinear neighbours), each once.
+    std::vector<int> touchedIndices(float lo, float hi, int n) const {
+        const bool lin = filter_ == Filter::Trilinear;
+        const int64_t i0 = floorIndex(lin ? lo * float(n) - 0.5f : lo * float(n));
+        const int64_t i1 = floorIndex(lin ? hi * float(n) - 0.5f : hi * float(n)) + (lin ? 1 : 0);
+        std::vector<char> hit(size_t(n), 0);
+        if (wrap_ != Wrap::Clamp && i1 - i0 + 1 >= 2 * int64_t(n)) std::fill(hit.begin(), hit.end(), 1);
+        else if (wrap_ == Wrap::Clamp) for (int64_t i = wrapIndex(i0, n, wrap_); i <= wrapIndex(i1, n, wrap_); ++i) hit[size_t(i)] = 1;
+        else for (int64_t i = i0; i <= i1; ++i) hit[size_t(wrapIndex(i, n, wrap_))] = 1;
+        std::vector<int> out;
+        for (int i = 0; i < n; ++i)
+            if (hit[size_t(i)]) out.push_back(i);
+        return out;
+    }
+
+    void nearest(const vec3& u, float* c) const {
+        // FilterMode::Nearest: voxel floor(u·res) (Dr.Jit Texture::eval_nonaccel).
+        const int x = int(wrapIndex(floorIndex(u.x * float(g_.xres)), g_.xres, wrap_));
+        const int y = int(wrapIndex(floorIndex(u.y * float(g_.yres)), g_.yres, wrap_));
+        const int z = int(wrapIndex(floorIndex(u.z * float(g_.zres)), g_.zres, wrap_));
+        for (int k = 0; k < g_.channels; ++k) c[k] = g_.at(x, y, z, k);
+    }
+
+    void trilinear(const vec3& u, float* c) const {
+        // FilterMode::Linear: sample positions at cell centres, x·res − ½ (Dr.Jit eval_nonaccel).
+        const int res[3] = {g_.xres, g_.yres, g_.zres};
+        int i[3][2];
+        float w[3][2];
+        for (int a = 0; a < 3; ++a) {
+            const float x = u[a] * float(res[a]) - 0.5f;
+            const int64_t f = floorIndex(x);
+            w[a][1] = std::clamp(x - float(f), 0.0f, 1.0f);
+            w[a][0] = 1.0f - w[a][1];
+            i[a][0] = int(wrapIndex(f, res[a], wrap_));
+            i[a][1] = int(wrapIndex(f + 1, res[a], wrap_));
+        }
+        for (int corner = 0; corner < 8; ++corner) {
+            const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
+            const float weight = w[0][bx] * w[1][by] * w[2][bz];
+            for (int k = 0; k < g_.channels; ++k) c[k] += weight * g_.at(i[0][bx], i[1][by], i[2][bz], k);
+        }
+    }
+
+    VolumeGridData g_;
+    Filter filter_;
+    Wrap wrap_;
+    SpectrumKind kind_;
+    ValueRange range_;
+    float maxValue_ = 0.0f;
+};
+
+/// to_world · (the file's box → unit cube)⁻¹ when use_grid_bbox is set (Mitsuba 3 grid.cpp).
+mat4 gridToWorld(const Properties& p, const mat4& toWorld, bool useGridBox, const VolumeGridData& g) {
+    if (!useGridBox) return toWorld;
+    const vec3 extent = g.bboxMax - g.bboxMin;
+    if (!(extent.x > 0 && extent.y > 0 && extent.z > 0))
+        failAt(p.locationOf("use_grid_bbox"), "gridvolume: use_grid_bbox needs a non-empty bounding box in the .vol file");
+    return toWorld * glm::scale(glm::translate(mat4(1.0f), g.bboxMin), extent);
+}
+
+std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
+    const std::string file = p.getString("filename");
+    const Filter filter = parseFilter(p);
+    const Wrap wrap = parseWrap(p);
+    const mat4 toWorld = readToWorld(p);
+    p.getBool("raw", false);   // see the file comment: no effect here
+    p.getBool("accel", true);  // Mitsuba 3: CUDA hardware interpolation; no effect on the CPU
+    const bool useGridBox = p.getBool("use_grid_bbox", false);
+    if (kind == SpectrumKind::Illuminant) failAt(p.location(), "gridvolume: volumes cannot give emission spectra");
+    VolumeGridData g = withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
+    if (g.channels != 1 && g.channels != 3)
+        failAt(p.locationOf("filename"), file, ": gridvolume supports 1- or 3-channel grids, this one has ", g.channels);
+    const mat4 m = gridToWorld(p, toWorld, useGridBox, g);
+    return std::make_shared<GridVolume>(std::move(g), m, filter, wrap, kind);
+}
+
+}  // namespace
+
+IRIS_REGISTER(VolumeRegistry, "gridvolume", create);
+
+}  // namespace iris
