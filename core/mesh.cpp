@@ -1,5 +1,9 @@
 #include "core/mesh.h"
 
+#include <array>
+#include <bit>
+#include <map>
+
 #include "core/error.h"
 
 namespace iris {
@@ -79,6 +83,27 @@ TriangleMesh makeDisk(int segments) {
     for (int i = 0; i < segments; ++i)
         m.indices.insert(m.indices.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % segments)});
     return m;
+}
+
+size_t openEdgeCount(const TriangleMesh& mesh) {
+    // Weld: one id per distinct position (bitwise; −0 and +0 differ only in the sign bit, folded).
+    auto key = [](const vec3& p) {
+        auto bits = [](float f) { return f == 0.0f ? 0u : std::bit_cast<uint32_t>(f); };
+        return std::array<uint32_t, 3>{bits(p.x), bits(p.y), bits(p.z)};
+    };
+    std::map<std::array<uint32_t, 3>, uint32_t> ids;
+    std::vector<uint32_t> weld(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) weld[i] = ids.emplace(key(mesh.positions[i]), uint32_t(ids.size())).first->second;
+    std::map<std::pair<uint32_t, uint32_t>, int> uses;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = weld[mesh.indices[3 * t + e]], b = weld[mesh.indices[3 * t + (e + 1) % 3]];
+            if (a == b) continue;  // degenerate edge
+            ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    size_t open = 0;
+    for (const auto& [edge, n] : uses) open += n != 2;
+    return open;
 }
 
 }  // namespace iris

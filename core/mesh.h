@@ -26,6 +26,11 @@ struct TriangleMesh {
     void validate() const;
 };
 
+/// Edges of the surface not shared by exactly two triangles, with vertices welded by exact
+/// position (so split vertices at uv or normal seams do not open the surface): 0 for a closed,
+/// manifold surface (the boundary a participating medium needs).
+size_t openEdgeCount(const TriangleMesh& mesh);
+
 /// Built-in shapes (Mitsuba conventions): rectangle [-1,1]² at z = 0 facing +z; cube [-1,1]³;
 /// disk of radius 1 at z = 0 facing +z (tessellated with `segments` triangles).
 TriangleMesh makeRectangle();

@@ -31,7 +31,8 @@ sys.path.insert(0, str(HERE))
 from iris_experiments import exr, report, tools  # noqa: E402
 from iris_experiments.errors import ExperimentError  # noqa: E402
 
-EXPERIMENTS = ["channel_count", "per_bounce_phase", "approximation_error", "thesis_reproduction", "sampler_efficiency"]
+EXPERIMENTS = ["channel_count", "per_bounce_phase", "approximation_error", "thesis_reproduction", "sampler_efficiency",
+               "media_mis"]
 
 
 def parse_args(argv):

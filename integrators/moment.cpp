@@ -16,6 +16,7 @@ public:
                        PathStats& stats) const override {
         return nested_->Li(scene, ray, wl, sampler, arena, stats);
     }
+    bool rendersMedia() const override { return nested_->rendersMedia(); }
 
 private:
     IntegratorPtr nested_;

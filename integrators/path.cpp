@@ -59,15 +59,8 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         }
         if (depth >= maxDepth_) break;
 
-        ShadingPoint sp;
-        sp.tex.uv = si.uv;
-        sp.tex.p = si.p;
-        sp.ng = si.ng;
-        sp.dpdu = si.dpScale * si.dpdu;
-        sp.dpdv = si.dpScale * si.dpdv;
-        sp.shading = Frame::fromNormalTangent(si.ns, si.dpdu);
-        const Frame frame = si.material->shadingFrame(sp);
-        sp.shading = frame;
+        const ShadingPoint sp = shadingPointAt(si);
+        const Frame& frame = sp.shading;
         const BSDF* bsdf = si.material->getBSDF(sp, wl, arena);
         if (!bsdf) {  // pure boundary: continue straight through
             ray = si.spawnRay(ray.d);
@@ -139,9 +132,6 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
     return L;
 }
 
-namespace {
-
-/// Mitsuba's max_depth, rr_depth and hide_emitters (0.6: maxDepth, rrDepth, hideEmitters).
 PathParams readPathParams(const Properties& p) {
     PathParams pp;
     pp.maxDepth = p.getInt("max_depth", -1);
@@ -155,6 +145,8 @@ PathParams readPathParams(const Properties& p) {
     if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
     return pp;
 }
+
+namespace {
 
 std::shared_ptr<Integrator> createPath(const Properties& p) {
     const PathParams pp = readPathParams(p);

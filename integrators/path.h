@@ -15,6 +15,10 @@ struct PathParams {
     bool hideEmitters = false;
 };
 
+/// Reads max_depth, rr_depth and hide_emitters (Mitsuba 0.6: maxDepth, rrDepth, hideEmitters)
+/// and strict_normals (accepted, no effect); shared by path, direct, volpath and volpathmis.
+PathParams readPathParams(const Properties& p);
+
 class PathIntegrator final : public Integrator {
 public:
     /// `maxDepth`, `rrDepth`: the values the paths use (for `direct`: 2 and never).

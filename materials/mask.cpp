@@ -136,6 +136,7 @@ public:
     const BSDF* getBSDF(const ShadingPoint&, SampledWavelengths& wl, Arena& arena) const override {
         return arena.make<NullBSDF>(wl.size());
     }
+    bool isPassThrough() const override { return true; }
 };
 
 std::shared_ptr<Material> nestedMaterial(const Properties& child) {

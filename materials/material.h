@@ -6,6 +6,7 @@
 
 #include "core/arena.h"
 #include "core/frame.h"
+#include "core/ray.h"
 #include "core/registry.h"
 #include "materials/textures/texture.h"
 #include "materials/bsdf.h"
@@ -39,7 +40,26 @@ public:
     /// perturb it inside their BSDF; materials/perturbed_frame.h), so that a wrapper around such a
     /// material hands it each frame it may use.
     virtual bool perturbsShading() const { return false; }
+
+    /// True for a surface that only passes light through unchanged (the `null` bsdf): shadow rays
+    /// of the volumetric integrators cross it (integrators/volpath.cpp).
+    virtual bool isPassThrough() const { return false; }
 };
+
+/// The shading point of a surface hit as the integrators give it to its material: uv, position,
+/// the derivatives with their lengths, and the shading frame (smooth normal, tangent ∂p/∂u) after
+/// the material's own perturbation (Material::shadingFrame).
+inline ShadingPoint shadingPointAt(const SurfaceInteraction& si) {
+    ShadingPoint sp;
+    sp.tex.uv = si.uv;
+    sp.tex.p = si.p;
+    sp.ng = si.ng;
+    sp.dpdu = si.dpScale * si.dpdu;
+    sp.dpdv = si.dpScale * si.dpdv;
+    sp.shading = Frame::fromNormalTangent(si.ns, si.dpdu);
+    sp.shading = si.material->shadingFrame(sp);
+    return sp;
+}
 
 using MaterialPtr = std::shared_ptr<const Material>;
 /// Every BSDF type, by its scene-file name (`<bsdf type="...">`).

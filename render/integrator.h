@@ -29,6 +29,9 @@ public:
     virtual SampledSpectrum Li(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler,
                                Arena& arena, PathStats& stats) const = 0;
     const std::string& type() const { return type_; }
+    /// True for integrators that render participating media (volpath, volpathmis); the loader
+    /// refuses a scene with media and an integrator that would ignore them.
+    virtual bool rendersMedia() const { return false; }
     int maxDepth() const { return maxDepth_; }
 
 private:

@@ -14,6 +14,7 @@
 #include "core/mesh.h"
 #include "core/rng.h"
 #include "materials/material.h"
+#include "materials/media/medium.h"
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
 #include "render/sensors/sensor.h"
@@ -32,6 +33,9 @@ struct ShapeDescription {
     bool faceNormals = false;            // Mesh: ignore vertex normals
     MaterialPtr material;                // nullptr: the default diffuse (0.5) material
     SpectrumPtr emission;                // area emitter radiance (Illuminant kind), or nullptr
+    // Participating media on the two sides (Mitsuba's `interior` and `exterior`), or nullptr for
+    // vacuum / "no change"; a shape with either is a medium transition (integrators/volpath.cpp).
+    MediumPtr interior, exterior;
     std::string name;                    // for messages
 };
 
@@ -42,6 +46,7 @@ struct CameraDescription {
     ReconstructionFilterPtr filter;  // nullptr: Mitsuba's default, a gaussian of stddev 0.5 px
     SensorPtr sensor;                // created for width × height (render/sensors/)
     std::optional<LdrSettings> ldr;  // an ldrfilm's tone mapping for the PNG (render/films/)
+    MediumPtr medium;                // the medium the sensor is in (nullptr: vacuum)
 };
 
 class Integrator;
@@ -59,6 +64,13 @@ struct SceneDescription {
     SamplePattern samplePattern;
     // What the loader charged to the memory budget for this scene, given back when the last copy goes.
     std::shared_ptr<const MemoryReservation> memory;
+    /// True when some shape or the sensor has a medium (only the volumetric integrators render it).
+    bool hasMedia() const {
+        if (camera.medium) return true;
+        for (const ShapeDescription& s : shapes)
+            if (s.interior || s.exterior) return true;
+        return false;
+    }
 };
 
 }  // namespace iris

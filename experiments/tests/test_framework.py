@@ -304,6 +304,15 @@ class ExperimentEndToEndTest(TempDirTest):
             self.assertGreater(lo, 0.8 * factor, line)
             self.assertLess(hi, 1.2 * factor, line)
 
+    def test_media_mis_reports_the_error_ratio(self):
+        # The fake renderer ignores the integrator: both variants have the same noise, so the ratio
+        # table exists and the conclusion states a ratio for the whole spp range.
+        out, _ = self.run_experiment("media_mis")
+        text = (out / "report.md").read_text()
+        self.assertIn("Error ratio at equal spp", text)
+        line = next(l for l in text.splitlines() if "at equal spp volpathmis' relMSE is" in l)
+        self.assertIn("over 2..8 spp", line)
+
     def test_per_bounce_phase_without_real_difference_has_zero_excess(self):
         # The fake renderer ignores phase_model: both variants are the same image, so the measured
         # difference must equal the noise floor exactly.

@@ -16,15 +16,15 @@ namespace {
 
 /// A sensor's film and sampler, named or nested without a name (Mitsuba: one of each).
 struct SensorChildren {
-    PropertiesPtr film, sampler;
+    PropertiesPtr film, sampler, medium;
 };
 
 SensorChildren readSensorChildren(const Properties& p) {
-    SensorChildren c{p.getObject("film", false), p.getObject("sampler", false)};
+    SensorChildren c{p.getObject("film", false), p.getObject("sampler", false), p.getObject("medium", false)};
     for (const PropertiesPtr& child : p.children()) {
-        if (child->tag() != "film" && child->tag() != "sampler")
-            failAt(child->location(), "unexpected <", child->tag(), "> inside <sensor> (allowed: film, sampler)");
-        PropertiesPtr& slot = child->tag() == "film" ? c.film : c.sampler;
+        if (child->tag() != "film" && child->tag() != "sampler" && child->tag() != "medium")
+            failAt(child->location(), "unexpected <", child->tag(), "> inside <sensor> (allowed: film, sampler, medium)");
+        PropertiesPtr& slot = child->tag() == "film" ? c.film : child->tag() == "sampler" ? c.sampler : c.medium;
         if (slot) failAt(child->location(), "sensor has more than one <", child->tag(), ">");
         slot = child;
     }
@@ -49,6 +49,10 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
     cam.filter = film.filter;
     cam.ldr = film.ldr;
     cam.sensor = SensorRegistry::instance().create(p, FilmSize{film.width, film.height});
+    if (c.medium) {
+        if (c.medium->tag() != "medium") failAt(p.locationOf("medium"), "parameter 'medium' must be a <medium>");
+        cam.medium = mediumFor(*c.medium);
+    }
     if (c.sampler) {
         const std::shared_ptr<SamplerDescription> sampler = SamplerRegistry::instance().create(*c.sampler);
         scene.spp = sampler->sampleCount;
@@ -86,12 +90,24 @@ void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, 
         scene.integrator = IntegratorRegistry::instance().create(p);
     } else if (tag == "sampler" || tag == "film" || tag == "rfilter") {
         failAt(p.location(), "<", tag, "> must be inside a <sensor>");
-    } else if (tag == "medium" || tag == "phase") {
-        failAt(p.location(), "<", tag, " type=\"", p.type(), "\">: iris has no participating media (surfaces in vacuum only); "
-               "remove the <", tag, "> and the shapes' interior/exterior references, and use integrator 'path'");
+    } else if (tag == "medium") {
+        mediumFor(p);  // created now so that its errors show; checkMediaHaveBoundaries finds unused ones
+    } else if (tag == "phase") {
+        failAt(p.location(), "a <phase> belongs inside a <medium>");
     } else {
         failAt(p.location(), "<", tag, "> is not supported yet");
     }
+}
+
+/// A top-level <medium> that no shape (interior/exterior) and no sensor refers to has no boundary
+/// and would be silently ignored (Mitsuba ignores it too); iris refuses it.
+void checkMediaHaveBoundaries(const ParsedScene& parsed, const SceneDescription& scene, std::vector<std::string>& problems) {
+    std::vector<const void*> used{scene.camera.medium.get()};
+    for (const ShapeDescription& s : scene.shapes) used.insert(used.end(), {s.interior.get(), s.exterior.get()});
+    for (const PropertiesPtr& obj : parsed.objects)
+        if (obj->tag() == "medium" && obj->instance && std::find(used.begin(), used.end(), obj->instance.get()) == used.end())
+            problems.push_back(strCat(obj->location().str(), ": <medium id=\"", obj->id(), "\"> has no boundary: no shape refers to it as "
+                                      "'interior' or 'exterior' and the sensor is not inside it"));
 }
 
 /// Every top-level object is loaded even after one fails, so that a file with several problems
@@ -114,6 +130,10 @@ SceneDescription build(ParsedScene parsed) {
     if (!haveSensor)  // Mitsuba's default sensor
         attempt([&] { loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene); });
     if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", "path", {}));
+    checkMediaHaveBoundaries(parsed, scene, problems);
+    if (problems.empty() && scene.hasMedia() && !scene.integrator->rendersMedia())
+        problems.push_back(strCat(scene.sourceFile, ": the scene has participating media, which integrator '", scene.integrator->type(),
+                                  "' ignores: use 'volpath' or 'volpathmis'"));
     if (!problems.empty()) {
         std::string all;
         for (const std::string& m : problems) all += (all.empty() ? "" : "\n") + m;

@@ -1,5 +1,8 @@
 #include "render/loader/shape_loader.h"
 
+#include <tuple>
+
+#include "core/mesh.h"
 #include "render/shapes/shape.h"
 #include "spectral/spectrum_params.h"
 
@@ -9,11 +12,12 @@ namespace {
 
 /// A shape's bsdf and area emitter, named (`<ref name="bsdf" .../>`) or nested without a name.
 struct ShapeChildren {
-    PropertiesPtr bsdf, emitter;
+    PropertiesPtr bsdf, emitter, interior, exterior;
 };
 
 ShapeChildren readChildren(const Properties& p) {
-    ShapeChildren c{p.getObject("bsdf", false), p.getObject("emitter", false)};
+    ShapeChildren c{p.getObject("bsdf", false), p.getObject("emitter", false), p.getObject("interior", false),
+                    p.getObject("exterior", false)};
     for (const PropertiesPtr& child : p.children()) {
         if (child->tag() == "bsdf") {
             if (c.bsdf) failAt(p.location(), "shape has more than one bsdf");
@@ -22,10 +26,22 @@ ShapeChildren readChildren(const Properties& p) {
             if (c.emitter) failAt(p.location(), "shape has more than one emitter");
             c.emitter = child;
         } else {
-            failAt(child->location(), "<", child->tag(), "> is not supported inside a shape (supported: bsdf, emitter)");
+            failAt(child->location(), "<", child->tag(), "> is not supported inside a shape (supported: bsdf, emitter, and "
+                   "<medium name=\"interior\"> / <medium name=\"exterior\">)");
         }
     }
     return c;
+}
+
+/// A medium needs a boundary that separates its inside from the rest (Mitsuba: "interior" is the
+/// side the normals point away from): spheres are closed; a mesh must have every edge shared by
+/// exactly two triangles, with vertices welded by position (so that uv seams do not count).
+void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
+    if (s.type != ShapeDescription::Type::Mesh || !s.mesh) return;
+    const size_t open = openEdgeCount(*s.mesh);
+    if (open > 0)
+        failAt(p.locationOf("interior"), "shape '", s.name, "' has an interior medium but is not a closed surface (", open,
+               " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
@@ -40,9 +56,22 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
         s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
         c.emitter->checkUnqueried();
     }
+    for (const auto& [name, obj, slot] : {std::tuple{"interior", c.interior, &s.interior}, std::tuple{"exterior", c.exterior, &s.exterior}}) {
+        if (!obj) continue;
+        if (obj->tag() != "medium") failAt(p.locationOf(name), "parameter '", name, "' must be a <medium>");
+        *slot = mediumFor(*obj);
+    }
+    if (s.interior) checkClosedBoundary(p, s);
 }
 
 }  // namespace
+
+MediumPtr mediumFor(const Properties& medium) {
+    if (medium.instance) return std::static_pointer_cast<const Medium>(medium.instance);
+    MediumPtr m = MediumRegistry::instance().create(medium);
+    medium.instance = std::const_pointer_cast<Medium>(m);
+    return m;
+}
 
 MaterialPtr materialFor(const Properties& bsdf) {
     if (bsdf.instance) return std::static_pointer_cast<const Material>(bsdf.instance);

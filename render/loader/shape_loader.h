@@ -14,4 +14,8 @@ ShapeDescription loadShape(const Properties& shape);
 /// one id shares it). Unknown types give "file:line: unknown bsdf type 'x' (supported: ...)".
 MaterialPtr materialFor(const Properties& bsdf);
 
+/// The medium for a <medium> Properties, created once per Properties object (MediumRegistry,
+/// materials/media/).
+MediumPtr mediumFor(const Properties& medium);
+
 }  // namespace iris

@@ -1,6 +1,5 @@
 // Mitsuba plugins iris cannot honour, with what to use instead: their "unknown <tag> type"
-// errors (core/registry.h) end with this advice. Media and phase functions are refused by the
-// scene loader itself (render/loader/scene_loader.cpp).
+// errors (core/registry.h) end with this advice.
 #include "render/integrator.h"
 #include "render/lights/light.h"
 #include "render/shapes/shape.h"
@@ -13,10 +12,6 @@ IRIS_HINT(LightRegistry, "projector", "iris has no projector emitter: use 'spot'
 IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
-IRIS_HINT(IntegratorRegistry, "volpath",
-          "iris has no participating media: use 'path', which gives the same image when the scene has no media");
-IRIS_HINT(IntegratorRegistry, "volpathmis",
-          "iris has no participating media: use 'path', which gives the same image when the scene has no media");
 IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
 IRIS_HINT(ShapeRegistry, "shapegroup", "iris has no instancing: write the shapes out in place");
 IRIS_HINT(ShapeRegistry, "instance", "iris has no instancing: write the shapes out in place");

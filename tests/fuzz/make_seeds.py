@@ -182,6 +182,17 @@ SCENE_SEEDS = {
 }
 
 
+def vol_seeds():
+    """Mitsuba .vol grids (core/io/vol_reader.h): float32 with 1 and 3 channels, uint8."""
+    def vol(encoding, res, channels, values):
+        head = b'VOL\x03' + struct.pack('<5i', encoding, *res, channels) + struct.pack('<6f', 0, 0, 0, 1, 1, 1)
+        body = struct.pack('<%df' % len(values), *values) if encoding == 1 else bytes(values)
+        return head + body
+    put('vol', 'float1.vol', vol(1, (2, 2, 2), 1, [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5]))
+    put('vol', 'float3.vol', vol(1, (2, 1, 1), 3, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+    put('vol', 'uint8.vol', vol(3, (3, 1, 1), 1, [0, 128, 255]))
+
+
 def scene_seeds():
     for name, text in SCENE_SEEDS.items():
         put('scene', name, text)
@@ -196,3 +207,4 @@ if __name__ == '__main__':
     spectral_image_seed()
     checkpoint_seeds()
     scene_seeds()
+    vol_seeds()

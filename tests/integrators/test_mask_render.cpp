@@ -11,10 +11,7 @@
 #include <cstdio>
 #include <string>
 
-#include "render/film.h"
-#include "render/loader/scene_loader.h"
-#include "render/renderer.h"
-#include "render/scene.h"
+#include "tests/support/image_mean.h"
 
 using namespace iris;
 
@@ -58,37 +55,12 @@ const std::string kConstant = R"(<emitter type="constant"><float name="radiance"
 const std::string kSun =
     R"(<emitter type="directional"><vector name="direction" value="0 0 -1"/><float name="irradiance" value="3.14159265"/></emitter>)" "\n";
 
-Film render(const std::string& xml, int spp, uint64_t seed = 7) {
-    const Scene s(loadSceneFromString(xml, "."));
-    RenderOptions opt;
-    opt.spp = spp;
-    opt.seed = seed;
-    opt.rgbMode = true;
-    opt.threads = 2;
-    Film film(kRes, kRes);
-    Renderer(s, opt).render(film);
-    return film;
-}
+Film render(const std::string& xml, int spp, uint64_t seed = 7) { return test::renderXml(xml, kRes, kRes, spp, seed, true); }
 
-struct Mean {
-    double mean = 0, stderr_ = 0;
-};
+using Mean = test::ImageMean;
 
 /// Mean of channel G over all pixels and its standard error from the pixels' spread.
-Mean imageMean(const Film& f) {
-    double s = 0, s2 = 0;
-    const int n = kRes * kRes;
-    for (int y = 0; y < kRes; ++y)
-        for (int x = 0; x < kRes; ++x) {
-            const double v = f.pixel(x, y).y;
-            s += v;
-            s2 += v * v;
-        }
-    Mean m;
-    m.mean = s / n;
-    m.stderr_ = std::sqrt(std::max(0.0, s2 / n - m.mean * m.mean) / (n - 1));
-    return m;
-}
+Mean imageMean(const Film& f) { return test::imageMean(f, 1); }
 
 /// Mitsuba 3's value for a white one-sided diffuse mask of opacity o in a constant environment of
 /// radiance 1 (max_depth 2): (1 − o) through the pass-through, plus o · ∫ (1/π) cos (w_light +

@@ -1,0 +1,425 @@
+// Volumetric path tracing with spectral transport: Mitsuba 3's `volpath` and `volpathmis`
+// (parameters max_depth, rr_depth, hide_emitters as for `path`).
+//
+// Both follow the null-scattering path integral (Miller, Georgiev & Jarosz 2019, "A
+// Null-Scattering Path Integral Formulation of Light Transport", SIGGRAPH; the estimator layout of
+// pbrt-v4 §14.2, VolPathIntegrator): free-flight distances are sampled against each medium's
+// majorant σ_maj for one *sampling lane* h of the path's wavelengths (delta tracking with
+// absorption, real scattering and null scattering chosen by σ_a, σ_s, σ_n over σ_maj in lane h);
+// shadow rays estimate transmittance by ratio tracking. Every lane k carries, besides the
+// throughput β = f/p_h, the ratio r_u[k] = p_k/p_h of the pdf the path would have had if lane k
+// had been sampled (and r_l[k] for the light-sampling strategy of the last vertex). A contribution
+// f·Le is divided by
+//   volpath:    p_h alone            — β·Le/r_u[h] (r_u[h] = 1): Mitsuba 3's volpath, unbiased
+//               but noisy in media whose σ_t varies with wavelength;
+//   volpathmis: the mean over lanes  — β·Le/mean_k r_u[k]: one-sample MIS over the lanes with the
+//               balance heuristic (hero wavelength spectral MIS, Wilkie et al. 2014 §4; pbrt-v4
+//               eq. 14.19), as Mitsuba 3's volpathmis does;
+// and by the sum of both strategies' ratios where next-event estimation and BSDF/phase sampling
+// could both have produced the last segment (balance heuristic, Veach 1997 §9.2).
+// The sampling lane: spectral mode lane 0 (the lanes are exchangeable, spectral/wavelengths.h, so
+// lane 0 is a uniform choice among them); RGB mode a uniformly chosen channel (as Mitsuba 3's
+// volpath does). After a dispersive refraction leaves only the hero wavelength, both use lane 0
+// alone (the other lanes no longer carry a sample).
+//
+// Mitsuba 3's conventions (src/integrators/volpath.cpp): depth counts real scattering events on
+// surfaces and in media, not null-BSDF boundary crossings; a path stops when depth reaches
+// max_depth; emitter sampling needs depth + 1 < max_depth; a shape with an interior or exterior
+// medium is a medium transition: the ray's medium becomes the exterior one when it leaves along
+// the geometric normal, the interior one otherwise. Shadow rays pass through `null` surfaces only
+// (any other surface blocks them). Media do not emit.
+#include "core/error.h"
+#include "core/sampling.h"
+#include "integrators/path.h"
+#include "materials/material.h"
+
+namespace iris {
+namespace {
+
+constexpr uint32_t kPassThroughLobe = kBSDFNull | kBSDFTransmission | kBSDFSpecular;
+
+/// What a path carries besides its position (see the file comment).
+struct PathState {
+    SampledSpectrum L, beta, rU, rL;
+    int depth = 0;
+    bool specularBounce = false;
+    float etaScale = 1.0f;
+    vec3 prevP{0.0f};  // the last real scattering vertex (for light pdfs)
+    const Medium* medium = nullptr;
+    bool terminated = false;
+};
+
+/// The medium on the far side of surface `si` for a ray leaving it along d (Mitsuba 3
+/// SurfaceInteraction::target_medium), or `current` when the shape is no medium transition.
+const Medium* mediumAfter(const Scene& scene, const SurfaceInteraction& si, const vec3& d, const Medium* current) {
+    const ShapeDescription& s = scene.description().shapes[si.shapeIndex];
+    if (!s.interior && !s.exterior) return current;
+    return glm::dot(d, si.ng) > 0 ? s.exterior.get() : s.interior.get();
+}
+
+/// Per-path random numbers for the variable number of tracking steps: a generator seeded from two
+/// sampler values, so that the sampler's dimensions stay aligned whatever happens (pbrt-v4 §14.2.2).
+Pcg32 trackingRng(Sampler& sampler) {
+    const uint64_t a = uint64_t(sampler.get1D() * 0x1p32f), b = uint64_t(sampler.get1D() * 0x1p32f);
+    return Pcg32(mix64(a << 32 | b), mix64(b ^ 0x9e3779b97f4a7c15ull));
+}
+
+/// exp(−σ·d) per lane.
+SampledSpectrum transmittance(const SampledSpectrum& sigma, float d) {
+    SampledSpectrum t(sigma.size());
+    for (int k = 0; k < sigma.size(); ++k) t[k] = std::exp(-sigma[k] * d);
+    return t;
+}
+
+class VolPathIntegrator final : public Integrator {
+public:
+    VolPathIntegrator(std::string type, const PathParams& p, bool spectralMIS)
+        : Integrator(std::move(type), p.maxDepth), params_(p), spectralMIS_(spectralMIS),
+          maxDepth_(p.maxDepth < 0 ? std::numeric_limits<int>::max() : p.maxDepth) {}
+    bool rendersMedia() const override { return true; }
+
+    SampledSpectrum Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+                       PathStats& stats) const override;
+
+private:
+    /// The denominator of a contribution from the pdf ratios r (see the file comment).
+    float reduce(const SampledSpectrum& r, int h, const SampledWavelengths& wl) const {
+        return spectralMIS_ && !wl.secondaryTerminated() ? r.average() : r[h];
+    }
+    /// Delta tracking from ray.o to tHit; on a real scattering event samples the phase function and
+    /// NEE, updates `ray` and returns true.
+    bool trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState& ps, SampledWavelengths& wl, Sampler& sampler,
+                     Pcg32& rng, Arena& arena, PathStats& stats) const;
+    /// A medium scattering at p: next-event estimation and phase sampling (returns false when the
+    /// path ends there).
+    bool scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState& ps, SampledWavelengths& wl,
+                         Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const;
+    /// Emission reached by a BSDF/phase-sampled ray: infinite lights (si = nullptr) or the area
+    /// light at si.
+    void addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
+                     const SampledWavelengths& wl) const;
+    /// Russian roulette after a real scattering event (pbrt-v4 §14.2.3), on the MIS-weighted
+    /// throughput with radiance scaling undone; u is drawn at every event. False: the path ends.
+    bool survivesRoulette(PathState& ps, int h, const SampledWavelengths& wl, float u) const {
+        if (ps.depth < params_.rrDepth) return true;
+        const float q = std::min(0.95f, (ps.beta * ps.etaScale).maxValue() / reduce(ps.rU, h, wl));
+        if (!(u < q)) return false;
+        ps.beta /= q;
+        return true;
+    }
+    /// Surface scattering; returns false when the path ends.
+    bool scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
+                          SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const;
+
+    /// Next-event estimation from p: the surface point si, or (si = nullptr) a point in ps.medium.
+    /// `f(wi, scatterPdf)` gives the BSDF·|cos| or phase value towards wi and sets its pdf.
+    template <typename F>
+    SampledSpectrum sampleLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, int h,
+                                const PathState& ps, const SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena,
+                                PathStats& stats, F&& f) const;
+    /// Transmittance from `o` towards `target` (or to infinity along `dir`), by ratio tracking
+    /// through media and pass-through surfaces; 0 when an opaque surface blocks. Updates the
+    /// strategies' pdf ratios rU, rL along the way.
+    SampledSpectrum shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist, const Medium* medium, int h,
+                                        SampledSpectrum& rU, SampledSpectrum& rL, const SampledWavelengths& wl, Pcg32& rng,
+                                        Arena& arena, PathStats& stats) const;
+
+    PathParams params_;
+    bool spectralMIS_;
+    int maxDepth_;
+};
+
+SampledSpectrum VolPathIntegrator::Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler,
+                                      Arena& arena, PathStats& stats) const {
+    const int n = wl.size();
+    PathState ps{SampledSpectrum(n, 0.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f)};
+    ps.medium = scene.description().camera.medium.get();
+    const float uLane = sampler.get1D();
+    const int h = wl.isRGB() ? std::min(int(uLane * n), n - 1) : 0;
+    Pcg32 rng = trackingRng(sampler);
+    Ray ray(cameraRay.o, glm::normalize(cameraRay.d));
+    ++stats.paths;
+
+    // A path crossing more than kMaxCrossings boundaries in a row without scattering (stacked null
+    // surfaces) is ended rather than followed forever.
+    constexpr int kMaxCrossings = 1000;
+    for (int crossings = 0, lastDepth = 0; ps.depth < maxDepth_; ++crossings) {
+        if (ps.depth != lastDepth) crossings = 0, lastDepth = ps.depth;
+        if (crossings > kMaxCrossings) break;
+        ++stats.rays;
+        const std::optional<SurfaceInteraction> hit = scene.intersect(ray);
+        const float tHit = hit ? hit->t : std::numeric_limits<float>::infinity();
+        if (ps.medium && trackMedium(scene, ray, tHit, h, ps, wl, sampler, rng, arena, stats)) {
+            arena.reset();
+            continue;  // scattered in the medium: ray is the new direction
+        }
+        if (ps.terminated || ps.beta.isBlack() || ps.rU.isBlack()) break;
+        if (!hit) {
+            addEmission(scene, ray, nullptr, h, ps, wl);
+            break;
+        }
+        addEmission(scene, ray, &*hit, h, ps, wl);
+        if (!scatterAtSurface(scene, *hit, ray, h, ps, wl, sampler, rng, arena, stats)) break;
+        arena.reset();
+    }
+    return ps.L;
+}
+
+bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState& ps, SampledWavelengths& wl,
+                                    Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
+    MajorantIterator* it = ps.medium->majorants(ray, tHit, wl, arena);
+    SampledSpectrum tMaj(wl.size(), 1.0f);  // majorant transmittance since the last collision
+    while (const std::optional<MajorantSegment> seg = it->next()) {
+        const float sMaj = seg->sigmaMaj[h];
+        float t = seg->tMin;
+        if (!(sMaj > 0)) {  // nothing to collide with in the sampling lane
+            tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+            continue;
+        }
+        for (;;) {
+            const float dt = -std::log(1.0f - rng.uniform()) / sMaj;  // free flight ∝ σ_maj e^{−σ_maj t}
+            if (t + dt >= seg->tMax) {
+                tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+                break;
+            }
+            t += dt;
+            tMaj *= transmittance(seg->sigmaMaj, dt);
+            const vec3 p = ray.at(t);
+            const MediumCoefficients c = ps.medium->coefficients(p, wl);
+            const float pAbsorb = (c.sigmaT[h] - c.sigmaS[h]) / sMaj, pScatter = c.sigmaS[h] / sMaj;
+            const float u = rng.uniform();
+            if (u < pAbsorb) {  // absorption ends the path (media do not emit)
+                ps.terminated = true;
+                return false;
+            }
+            if (u < pAbsorb + pScatter) {  // real scattering: pdf T_maj σ_s in lane h
+                const float pdf = tMaj[h] * c.sigmaS[h];
+                ps.beta *= tMaj * c.sigmaS / pdf;
+                ps.rU *= tMaj * c.sigmaS / pdf;
+                if (ps.beta.isBlack() || ps.rU.isBlack()) return ps.terminated = true, false;
+                return scatterInMedium(scene, p, ray, h, ps, wl, sampler, rng, arena, stats);
+            }
+            // Null scattering: pdf T_maj σ_n in lane h; the light strategy's ratio uses σ_maj.
+            SampledSpectrum sigmaN = seg->sigmaMaj - c.sigmaT;
+            for (int k = 0; k < sigmaN.size(); ++k) sigmaN[k] = std::max(sigmaN[k], 0.0f);
+            const float pdf = tMaj[h] * sigmaN[h];
+            if (!(pdf > 0)) return ps.terminated = true, false;
+            ps.beta *= tMaj * sigmaN / pdf;
+            ps.rU *= tMaj * sigmaN / pdf;
+            ps.rL *= tMaj * seg->sigmaMaj / pdf;
+            tMaj = SampledSpectrum(wl.size(), 1.0f);
+            if (ps.beta.isBlack() || ps.rU.isBlack()) return ps.terminated = true, false;
+        }
+    }
+    // Reached the surface (or left the medium's extent): pdf of no collision, T_maj in lane h.
+    const float pdf = tMaj[h];
+    if (!(pdf > 0)) return ps.terminated = true, false;
+    ps.beta *= tMaj / pdf;
+    ps.rU *= tMaj / pdf;
+    ps.rL *= tMaj / pdf;
+    return false;
+}
+
+bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState& ps,
+                                        SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
+    if (++ps.depth >= maxDepth_) return ps.terminated = true, false;
+    const PhaseFunction& phase = ps.medium->phase();
+    const vec3 wo = -ray.d;
+    if (ps.medium->sampleEmitters() && !scene.lights().empty() && ps.depth + 1 < maxDepth_) {
+        ps.L += sampleLight(scene, p, nullptr, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wi, float& pdf) {
+            pdf = phase.pdf(wo, wi);
+            return SampledSpectrum(wl.size(), phase.eval(wo, wi));
+        });
+    } else if (!scene.lights().empty()) {
+        sampler.get1D();  // keep the sampler's dimensions aligned
+        sampler.get2D();
+    }
+    const std::optional<PhaseSample> s = phase.sample(wo, sampler.get2D());
+    if (!s || !(s->pdf > 0)) return ps.terminated = true, false;
+    ps.beta *= s->weight();
+    ps.rL = ps.rU / s->pdf;
+    ps.specularBounce = false;
+    ps.prevP = p;
+    ray = Ray(p, s->wi);
+    if (!survivesRoulette(ps, h, wl, sampler.get1D())) return ps.terminated = true, false;
+    return true;
+}
+
+void VolPathIntegrator::addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
+                                    const SampledWavelengths& wl) const {
+    if (params_.hideEmitters && ps.depth == 0) return;
+    const auto& lights = scene.lights();
+    const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
+    auto add = [&](const Light& light, const SampledSpectrum& Le) {
+        if (Le.isBlack()) return;
+        if (ps.depth == 0 || ps.specularBounce) {
+            ps.L += ps.beta * Le / reduce(ps.rU, h, wl);
+            return;
+        }
+        const SampledSpectrum rL = ps.rL * (lightSelectPdf * light.pdfLi(ps.prevP, ray.d, si));
+        ps.L += ps.beta * Le / reduce(ps.rU + rL, h, wl);
+    };
+    if (!si) {
+        for (const Light* light : scene.infiniteLights()) add(*light, light->Le(vec3(0.0f), vec3(0.0f), ray.d, wl));
+    } else if (si->areaLight) {
+        add(*si->areaLight, si->areaLight->Le(si->p, si->ng, si->wo, wl));
+    }
+}
+
+bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
+                                         SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena,
+                                         PathStats& stats) const {
+    const ShadingPoint sp = shadingPointAt(si);
+    const Frame& frame = sp.shading;
+    const BSDF* bsdf = si.material->getBSDF(sp, wl, arena);
+    if (!bsdf || bsdf->flags() == kPassThroughLobe) {  // a boundary only: not a bounce (Mitsuba 3 volpath)
+        ps.medium = mediumAfter(scene, si, ray.d, ps.medium);
+        ray = si.spawnRay(ray.d);
+        return true;
+    }
+    const vec3 wo = frame.toLocal(si.wo);
+    if (bsdf->hasNonSpecular() && !scene.lights().empty() && ps.depth + 1 < maxDepth_) {
+        const vec3 ng = si.ng;
+        ps.L += sampleLight(scene, si.p, &si, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wiWorld, float& pdf) {
+            const vec3 wi = frame.toLocal(wiWorld);
+            pdf = 0.0f;
+            if (!(glm::dot(wiWorld, ng) * wi.z > 0)) return SampledSpectrum(wl.size(), 0.0f);  // light leak through shading normals
+            pdf = bsdf->pdf(wo, wi, TransportMode::Radiance);
+            return bsdf->eval(wo, wi, TransportMode::Radiance) * std::abs(wi.z);
+        });
+    } else if (!scene.lights().empty()) {
+        sampler.get1D();
+        sampler.get2D();
+    }
+    const float uc = sampler.get1D();
+    const vec2 u = sampler.get2D();
+    const auto bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
+    if (!bs || bs->pdf <= 0 || bs->f.isBlack()) return false;
+    const bool passThrough = bs->isNull();
+    const vec3 wiWorld = passThrough ? ray.d : glm::normalize(frame.toWorld(bs->wi));
+    if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) return false;  // across the geometric surface
+    ps.beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+    if (!passThrough) {  // a real bounce (the null lobe of a mask is a boundary crossing)
+        ++ps.depth;
+        ps.specularBounce = bs->isSpecular();
+        ps.rL = ps.rU / bs->pdf;
+        ps.prevP = si.p;
+        if (bs->isTransmission()) ps.etaScale *= sqr(bs->eta);
+    }
+    ps.medium = mediumAfter(scene, si, wiWorld, ps.medium);
+    ray = si.spawnRay(wiWorld);
+    if (ps.beta.isBlack() || ps.beta.hasNonFinite()) return false;
+    const float uRR = sampler.get1D();
+    return passThrough || survivesRoulette(ps, h, wl, uRR);
+}
+
+template <typename F>
+SampledSpectrum VolPathIntegrator::sampleLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, int h,
+                                               const PathState& ps, const SampledWavelengths& wl, Sampler& sampler, Pcg32& rng,
+                                               Arena& arena, PathStats& stats, F&& f) const {
+    const auto& lights = scene.lights();
+    const float uLight = sampler.get1D();
+    const vec2 uL = sampler.get2D();
+    const int li = std::min(int(uLight * lights.size()), int(lights.size()) - 1);
+    const Light& light = *lights[li];
+    const float lightSelectPdf = 1.0f / float(lights.size());
+    const auto ls = light.sampleLi(p, uL, wl);
+    if (!ls || !(ls->pdf > 0) || ls->L.isBlack()) return SampledSpectrum(wl.size(), 0.0f);
+    float scatterPdf = 0.0f;
+    const SampledSpectrum fv = f(ls->wi, scatterPdf);
+    if (fv.isBlack()) return fv;
+    // The shadow ray: from the surface (offset to the light's side; leaving a medium transition
+    // towards the light may enter the other side's medium) or the medium point, to the light point
+    // (offset off an area light) or to infinity.
+    const vec3 o = si ? offsetRayOrigin(p, si->ng, ls->wi) : p;
+    const Medium* start = si ? mediumAfter(scene, *si, ls->wi, ps.medium) : ps.medium;
+    float dist = std::numeric_limits<float>::infinity();
+    vec3 dir = ls->wi;
+    if (!ls->infinite) {
+        const vec3 target = glm::dot(ls->nLight, ls->nLight) > 0 ? offsetRayOrigin(ls->pLight, ls->nLight, -ls->wi) : ls->pLight;
+        const vec3 d = target - o;
+        dist = glm::length(d) * (1.0f - 1e-4f);
+        if (!(dist > 0)) return SampledSpectrum(wl.size(), 0.0f);
+        dir = d / glm::length(d);
+    }
+    SampledSpectrum rL = ps.rU * (lightSelectPdf * ls->pdf), rU = ps.rU * scatterPdf;
+    const SampledSpectrum T = shadowTransmittance(scene, o, dir, dist, start, h, rU, rL, wl, rng, arena, stats);
+    if (T.isBlack()) return T;
+    const SampledSpectrum contrib = ps.beta * fv * T * ls->L;
+    if (light.isDelta()) return contrib / reduce(rL, h, wl);
+    return contrib / reduce(rL + rU, h, wl);
+}
+
+SampledSpectrum VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist,
+                                                       const Medium* medium, int h, SampledSpectrum& rU, SampledSpectrum& rL,
+                                                       const SampledWavelengths& wl, Pcg32& rng, Arena& arena,
+                                                       PathStats& stats) const {
+    SampledSpectrum T(wl.size(), 1.0f);
+    for (int crossings = 0; crossings < 1000; ++crossings) {
+        ++stats.rays;
+        const std::optional<SurfaceInteraction> hit = scene.intersect(Ray(o, dir, dist));
+        if (hit && !hit->material->isPassThrough()) return SampledSpectrum(wl.size(), 0.0f);
+        const float tEnd = hit ? hit->t : dist;
+        if (medium) {
+            SampledSpectrum tMaj(wl.size(), 1.0f);
+            MajorantIterator* it = medium->majorants(Ray(o, dir), tEnd, wl, arena);
+            while (const std::optional<MajorantSegment> seg = it->next()) {
+                const float sMaj = seg->sigmaMaj[h];
+                float t = seg->tMin;
+                if (!(sMaj > 0)) {
+                    tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+                    continue;
+                }
+                for (;;) {  // ratio tracking (Novák et al. 2014), collisions ∝ σ_maj in lane h
+                    const float dt = -std::log(1.0f - rng.uniform()) / sMaj;
+                    if (t + dt >= seg->tMax) {
+                        tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+                        break;
+                    }
+                    t += dt;
+                    tMaj *= transmittance(seg->sigmaMaj, dt);
+                    const MediumCoefficients c = medium->coefficients(o + t * dir, wl);
+                    SampledSpectrum sigmaN = seg->sigmaMaj - c.sigmaT;
+                    for (int k = 0; k < sigmaN.size(); ++k) sigmaN[k] = std::max(sigmaN[k], 0.0f);
+                    const float pdf = tMaj[h] * sMaj;
+                    T *= tMaj * sigmaN / pdf;
+                    rL *= tMaj * seg->sigmaMaj / pdf;
+                    rU *= tMaj * sigmaN / pdf;
+                    tMaj = SampledSpectrum(wl.size(), 1.0f);
+                    // Russian roulette on a small ratio-tracking weight (pbrt-v4 §14.2.3).
+                    const float tr = T.maxValue() / reduce(rL + rU, h, wl);
+                    if (tr < 0.05f) {
+                        if (rng.uniform() < 0.75f) return SampledSpectrum(wl.size(), 0.0f);
+                        T /= 0.25f;
+                    }
+                    if (T.isBlack()) return T;
+                }
+            }
+            const float pdf = tMaj[h];
+            if (!(pdf > 0)) return SampledSpectrum(wl.size(), 0.0f);
+            T *= tMaj / pdf;
+            rL *= tMaj / pdf;
+            rU *= tMaj / pdf;
+        }
+        if (!hit) return T;
+        medium = mediumAfter(scene, *hit, dir, medium);
+        o = hit->spawnRay(dir).o;
+        dist -= hit->t;
+        if (!(dist > 0)) return T;
+    }
+    return T;
+}
+
+std::shared_ptr<Integrator> createVolPath(const Properties& p) {
+    return std::make_shared<VolPathIntegrator>(p.type(), readPathParams(p), false);
+}
+std::shared_ptr<Integrator> createVolPathMIS(const Properties& p) {
+    return std::make_shared<VolPathIntegrator>(p.type(), readPathParams(p), true);
+}
+
+}  // namespace
+
+IRIS_REGISTER(IntegratorRegistry, "volpath", createVolPath);
+IRIS_REGISTER(IntegratorRegistry, "volpathmis", createVolPathMIS);
+
+}  // namespace iris
