@@ -14,8 +14,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import tools  # noqa: E402,F401
-from iris_experiments.convergence import ConvergenceStudy, mean_sem  # noqa: E402
-from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
+from iris_experiments.convergence import ConvergenceStudy, mean_relmse_at_spp  # noqa: E402
+from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
 from iris_experiments.report import fmt, markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
 
@@ -31,21 +31,14 @@ QUICK = {"res": 16, "ref_spp": 64, "ref_seeds": 2,
 # ---------------------------------------------------------------------------------------------
 
 
-class MediaMIS(Experiment):
+class MediaMIS(ConvergenceExperiment):
     name = "media_mis"
     title = "Chromatic media: volpath against volpathmis"
     question = ("Question: how much lower is the error of spectral MIS (volpathmis) than of single-wavelength "
                 "free-flight sampling (volpath) on a medium whose extinction varies with wavelength, at equal "
                 "samples and at equal time?")
     scene_specs = SCENES
-
-    def cfg(self, quick):
-        return QUICK if quick else FULL
-
-    def settings(self, quick):
-        c = self.cfg(quick)
-        return {"mode": "quick" if quick else "full", "resolution": f"{c['res']} (-D res)",
-                "scenes": {k: v.path for k, v in self.scene_specs.items()}, **self.study.settings()}
+    FULL, QUICK = FULL, QUICK
 
     def sweeps(self, quick, args):
         c = self.cfg(quick)
@@ -76,8 +69,7 @@ class MediaMIS(Experiment):
     def ratios(self, rows):
         """{spp: relMSE(volpath) / relMSE(volpathmis)} from the seed means at each spp."""
         def mean(cfg, spp):
-            return mean_sem([r["relmse"] for r in rows if r.get("config") == cfg and r.get("spp") == spp
-                             and r.get("study") == self.study.name and not r.get("time_limit")])[0]
+            return mean_relmse_at_spp(rows, self.study.name, cfg, spp)
         return {spp: mean("volpath", spp) / mean("volpathmis", spp) for spp in self.study.spp_levels}
 
 

@@ -13,8 +13,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import tools  # noqa: E402
-from iris_experiments.convergence import ConvergenceStudy, mean_sem  # noqa: E402
-from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
+from iris_experiments.convergence import ConvergenceStudy, mean_relmse_at_spp  # noqa: E402
+from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
 from iris_experiments.report import fmt, markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
 
@@ -35,20 +35,13 @@ QUICK = {"res": 16, "ref_spp": 64, "ref_seeds": 2,
 # ---------------------------------------------------------------------------------------------
 
 
-class SamplerEfficiency(Experiment):
+class SamplerEfficiency(ConvergenceExperiment):
     name = "sampler_efficiency"
     title = "Samplers: error at equal samples and at equal time"
     question = ("Question: how much do stratified, multi-jittered and Owen-scrambled Sobol points lower the error "
                 "of a render against independent points, at equal samples per pixel and at equal wall time?")
     scene_specs = SCENES
-
-    def cfg(self, quick):
-        return QUICK if quick else FULL
-
-    def settings(self, quick):
-        c = self.cfg(quick)
-        return {"mode": "quick" if quick else "full", "resolution": f"{c['res']} (-D res)",
-                "scenes": {k: v.path for k, v in self.scene_specs.items()}, **self.study.settings()}
+    FULL, QUICK = FULL, QUICK
 
     def sweeps(self, quick, args):
         c = self.cfg(quick)
@@ -78,8 +71,7 @@ class SamplerEfficiency(Experiment):
     def reductions(self, rows, label):
         """{sampler: {spp: relMSE(independent) / relMSE(sampler)}} from the seed means at each spp."""
         def mean(cfg, spp):
-            return mean_sem([r["relmse"] for r in rows if r.get("config") == cfg and r.get("spp") == spp
-                             and r.get("study") == self.study.name and not r.get("time_limit")])[0]
+            return mean_relmse_at_spp(rows, self.study.name, cfg, spp)
         levels = self.study.spp_levels
         return {s: {spp: mean(BASELINE, spp) / mean(s, spp) for spp in levels}
                 for s in self.study.active_configs() if s != BASELINE}

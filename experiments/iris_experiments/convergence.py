@@ -87,6 +87,12 @@ class StudyResult:
 
 # ---- numbers ----------------------------------------------------------------------------------
 
+def mean_relmse_at_spp(rows, study_name: str, config: str, spp: int) -> float:
+    """Mean over seeds of the relMSE of one configuration's fixed-spp renders in a study's rows."""
+    return mean_sem([r["relmse"] for r in rows if r.get("config") == config and r.get("spp") == spp
+                     and r.get("study") == study_name and not r.get("time_limit")])[0]
+
+
 def mean_sem(values):
     """Mean and standard error of the mean (0 for one value); NaN for none."""
     v = [x for x in values if x is not None and math.isfinite(x)]

@@ -83,6 +83,21 @@ class Experiment:
         return {label: {"res": res} for label, spec in self.scene_specs.items() if "res" in spec.declared}
 
 
+class ConvergenceExperiment(Experiment):
+    """An experiment whose renders are one ConvergenceStudy per scene (self.study, set in sweeps()),
+    with a FULL and a QUICK definition {"res": ..., "ref_spp": ..., ...} as class attributes."""
+    FULL: dict = {}
+    QUICK: dict = {}
+
+    def cfg(self, quick):
+        return self.QUICK if quick else self.FULL
+
+    def settings(self, quick):
+        c = self.cfg(quick)
+        return {"mode": "quick" if quick else "full", "resolution": f"{c['res']} (-D res)",
+                "scenes": {k: v.path for k, v in self.scene_specs.items()}, **self.study.settings()}
+
+
 def parse_args(exp: Experiment, argv):
     argv = list(argv)
     p = argparse.ArgumentParser(prog=f"experiments/{exp.name}.py", description=f"{exp.title}. {exp.question}")
