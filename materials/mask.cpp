@@ -179,10 +179,7 @@ std::shared_ptr<Material> createMask(const Properties& p) {
     }
     if (spectral && spectral->isConstant()) {
         // Checked as RGB (the triple) and at 32 wavelengths over [360, 830] nm.
-        float lambdas[kMaxWavelengths];
-        for (int k = 0; k < kMaxWavelengths; ++k) lambdas[k] = kLambdaMin + (kLambdaMax - kLambdaMin) * k / (kMaxWavelengths - 1);
-        for (const SampledWavelengths& wl : {SampledWavelengths::rgb(defaultChannelWavelengths()),
-                                             SampledWavelengths::fixed(lambdas, kMaxWavelengths)}) {
+        for (const SampledWavelengths& wl : parameterCheckWavelengths()) {
             const SampledSpectrum o = spectral->eval(TextureQuery{}, wl);
             for (int k = 0; k < o.size(); ++k)
                 if (!(o[k] >= 0.0f && o[k] <= 1.0f + 1e-4f))

@@ -155,4 +155,10 @@ bool SampledWavelengths::secondaryTerminated() const {
     return n_ > 1;
 }
 
+std::array<SampledWavelengths, 2> parameterCheckWavelengths() {
+    float lambdas[kMaxWavelengths];
+    for (int k = 0; k < kMaxWavelengths; ++k) lambdas[k] = kLambdaMin + (kLambdaMax - kLambdaMin) * k / (kMaxWavelengths - 1);
+    return {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::fixed(lambdas, kMaxWavelengths)};
+}
+
 }  // namespace iris

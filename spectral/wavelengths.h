@@ -3,6 +3,7 @@
 // stratified rotations of it in primary-sample space. RGB mode: three fixed channel wavelengths.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -93,5 +94,9 @@ private:
     alignas(16) float pdf_[kMaxWavelengths];
     alignas(16) float d65_[kMaxWavelengths];
 };
+
+/// The wavelength sets a scene parameter's constant spectrum is checked at when it is loaded: RGB
+/// mode's three channels and kMaxWavelengths wavelengths evenly spaced over [kLambdaMin, kLambdaMax].
+std::array<SampledWavelengths, 2> parameterCheckWavelengths();
 
 }  // namespace iris

@@ -28,9 +28,7 @@ MediumCommon readMediumCommon(const Properties& p) {
 namespace iris {
 
 void checkMediumSpectrum(const Properties& p, const std::string& name, const Spectrum& s, float lo, float hi) {
-    float lambdas[kMaxWavelengths];
-    for (int k = 0; k < kMaxWavelengths; ++k) lambdas[k] = kLambdaMin + (kLambdaMax - kLambdaMin) * k / (kMaxWavelengths - 1);
-    for (const SampledWavelengths& wl : {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::fixed(lambdas, kMaxWavelengths)}) {
+    for (const SampledWavelengths& wl : parameterCheckWavelengths()) {
         const SampledSpectrum v = s.sample(wl);
         for (int k = 0; k < v.size(); ++k)
             if (!(v[k] >= lo && v[k] <= hi))
