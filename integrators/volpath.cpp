@@ -71,6 +71,44 @@ SampledSpectrum transmittance(const SampledSpectrum& sigma, float d) {
     return t;
 }
 
+/// σ_n = max(σ_maj − σ_t, 0) per lane: the null-collision coefficient.
+SampledSpectrum nullCoefficient(const SampledSpectrum& sigmaMaj, const SampledSpectrum& sigmaT) {
+    SampledSpectrum n = sigmaMaj - sigmaT;
+    for (int k = 0; k < n.size(); ++k) n[k] = std::max(n[k], 0.0f);
+    return n;
+}
+
+/// Tentative collisions along the majorant segments of `it` (delta/ratio tracking; pbrt-v4
+/// §14.2.1, SampleT_maj): free flights with rate σ_maj in lane h, t = −ln(1 − ξ)/σ_maj[h]; a segment
+/// whose lane-h majorant is 0 is crossed without collisions. At each collision
+/// `collision(t, segment, T_maj)` is called with the majorant transmittance since the previous
+/// collision (or the start); it returns false to stop the walk, and then the result is nullopt.
+/// Otherwise the result is T_maj from the last collision to the end of the last segment.
+template <typename F>
+std::optional<SampledSpectrum> sampleCollisions(MajorantIterator* it, int h, int lanes, Pcg32& rng, F&& collision) {
+    SampledSpectrum tMaj(lanes, 1.0f);
+    while (const std::optional<MajorantSegment> seg = it->next()) {
+        const float sMaj = seg->sigmaMaj[h];
+        float t = seg->tMin;
+        if (!(sMaj > 0)) {  // nothing to collide with in the sampling lane
+            tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+            continue;
+        }
+        for (;;) {
+            const float dt = -std::log(1.0f - rng.uniform()) / sMaj;  // free flight ∝ σ_maj e^{−σ_maj t}
+            if (t + dt >= seg->tMax) {
+                tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
+                break;
+            }
+            t += dt;
+            tMaj *= transmittance(seg->sigmaMaj, dt);
+            if (!collision(t, *seg, tMaj)) return std::nullopt;
+            tMaj = SampledSpectrum(lanes, 1.0f);
+        }
+    }
+    return tMaj;
+}
+
 class VolPathIntegrator final : public Integrator {
 public:
     VolPathIntegrator(std::string type, const PathParams& p, bool spectralMIS)
@@ -167,23 +205,11 @@ SampledSpectrum VolPathIntegrator::Li(const Scene& scene, const Ray& cameraRay, 
 
 bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState& ps, SampledWavelengths& wl,
                                     Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
-    MajorantIterator* it = ps.medium->majorants(ray, tHit, wl, arena);
-    SampledSpectrum tMaj(wl.size(), 1.0f);  // majorant transmittance since the last collision
-    while (const std::optional<MajorantSegment> seg = it->next()) {
-        const float sMaj = seg->sigmaMaj[h];
-        float t = seg->tMin;
-        if (!(sMaj > 0)) {  // nothing to collide with in the sampling lane
-            tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
-            continue;
-        }
-        for (;;) {
-            const float dt = -std::log(1.0f - rng.uniform()) / sMaj;  // free flight ∝ σ_maj e^{−σ_maj t}
-            if (t + dt >= seg->tMax) {
-                tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
-                break;
-            }
-            t += dt;
-            tMaj *= transmittance(seg->sigmaMaj, dt);
+    bool scattered = false;
+    const std::optional<SampledSpectrum> tMaj = sampleCollisions(
+        ps.medium->majorants(ray, tHit, wl, arena), h, wl.size(), rng,
+        [&](float t, const MajorantSegment& seg, const SampledSpectrum& tm) {
+            const float sMaj = seg.sigmaMaj[h];
             const vec3 p = ray.at(t);
             const MediumCoefficients c = ps.medium->coefficients(p, wl);
             const float pAbsorb = (c.sigmaT[h] - c.sigmaS[h]) / sMaj, pScatter = c.sigmaS[h] / sMaj;
@@ -193,30 +219,30 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
                 return false;
             }
             if (u < pAbsorb + pScatter) {  // real scattering: pdf T_maj σ_s in lane h
-                const float pdf = tMaj[h] * c.sigmaS[h];
-                ps.beta *= tMaj * c.sigmaS / pdf;
-                ps.rU *= tMaj * c.sigmaS / pdf;
+                const float pdf = tm[h] * c.sigmaS[h];
+                ps.beta *= tm * c.sigmaS / pdf;
+                ps.rU *= tm * c.sigmaS / pdf;
                 if (ps.beta.isBlack() || ps.rU.isBlack()) return ps.terminated = true, false;
-                return scatterInMedium(scene, p, ray, h, ps, wl, sampler, rng, arena, stats);
+                scattered = scatterInMedium(scene, p, ray, h, ps, wl, sampler, rng, arena, stats);
+                return false;
             }
             // Null scattering: pdf T_maj σ_n in lane h; the light strategy's ratio uses σ_maj.
-            SampledSpectrum sigmaN = seg->sigmaMaj - c.sigmaT;
-            for (int k = 0; k < sigmaN.size(); ++k) sigmaN[k] = std::max(sigmaN[k], 0.0f);
-            const float pdf = tMaj[h] * sigmaN[h];
+            const SampledSpectrum sigmaN = nullCoefficient(seg.sigmaMaj, c.sigmaT);
+            const float pdf = tm[h] * sigmaN[h];
             if (!(pdf > 0)) return ps.terminated = true, false;
-            ps.beta *= tMaj * sigmaN / pdf;
-            ps.rU *= tMaj * sigmaN / pdf;
-            ps.rL *= tMaj * seg->sigmaMaj / pdf;
-            tMaj = SampledSpectrum(wl.size(), 1.0f);
+            ps.beta *= tm * sigmaN / pdf;
+            ps.rU *= tm * sigmaN / pdf;
+            ps.rL *= tm * seg.sigmaMaj / pdf;
             if (ps.beta.isBlack() || ps.rU.isBlack()) return ps.terminated = true, false;
-        }
-    }
+            return true;
+        });
+    if (!tMaj) return scattered;
     // Reached the surface (or left the medium's extent): pdf of no collision, T_maj in lane h.
-    const float pdf = tMaj[h];
+    const float pdf = (*tMaj)[h];
     if (!(pdf > 0)) return ps.terminated = true, false;
-    ps.beta *= tMaj / pdf;
-    ps.rU *= tMaj / pdf;
-    ps.rL *= tMaj / pdf;
+    ps.beta *= *tMaj / pdf;
+    ps.rU *= *tMaj / pdf;
+    ps.rL *= *tMaj / pdf;
     return false;
 }
 
@@ -361,45 +387,30 @@ SampledSpectrum VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 
         if (hit && !hit->material->isPassThrough()) return SampledSpectrum(wl.size(), 0.0f);
         const float tEnd = hit ? hit->t : dist;
         if (medium) {
-            SampledSpectrum tMaj(wl.size(), 1.0f);
-            MajorantIterator* it = medium->majorants(Ray(o, dir), tEnd, wl, arena);
-            while (const std::optional<MajorantSegment> seg = it->next()) {
-                const float sMaj = seg->sigmaMaj[h];
-                float t = seg->tMin;
-                if (!(sMaj > 0)) {
-                    tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
-                    continue;
-                }
-                for (;;) {  // ratio tracking (Novák et al. 2014), collisions ∝ σ_maj in lane h
-                    const float dt = -std::log(1.0f - rng.uniform()) / sMaj;
-                    if (t + dt >= seg->tMax) {
-                        tMaj *= transmittance(seg->sigmaMaj, seg->tMax - t);
-                        break;
-                    }
-                    t += dt;
-                    tMaj *= transmittance(seg->sigmaMaj, dt);
+            // Ratio tracking (Novák et al. 2014), collisions ∝ σ_maj in lane h.
+            const std::optional<SampledSpectrum> tMaj = sampleCollisions(
+                medium->majorants(Ray(o, dir), tEnd, wl, arena), h, wl.size(), rng,
+                [&](float t, const MajorantSegment& seg, const SampledSpectrum& tm) {
                     const MediumCoefficients c = medium->coefficients(o + t * dir, wl);
-                    SampledSpectrum sigmaN = seg->sigmaMaj - c.sigmaT;
-                    for (int k = 0; k < sigmaN.size(); ++k) sigmaN[k] = std::max(sigmaN[k], 0.0f);
-                    const float pdf = tMaj[h] * sMaj;
-                    T *= tMaj * sigmaN / pdf;
-                    rL *= tMaj * seg->sigmaMaj / pdf;
-                    rU *= tMaj * sigmaN / pdf;
-                    tMaj = SampledSpectrum(wl.size(), 1.0f);
+                    const SampledSpectrum sigmaN = nullCoefficient(seg.sigmaMaj, c.sigmaT);
+                    const float pdf = tm[h] * seg.sigmaMaj[h];
+                    T *= tm * sigmaN / pdf;
+                    rL *= tm * seg.sigmaMaj / pdf;
+                    rU *= tm * sigmaN / pdf;
                     // Russian roulette on a small ratio-tracking weight (pbrt-v4 §14.2.3).
                     const float tr = T.maxValue() / reduce(rL + rU, h, wl);
                     if (tr < 0.05f) {
-                        if (rng.uniform() < 0.75f) return SampledSpectrum(wl.size(), 0.0f);
+                        if (rng.uniform() < 0.75f) return false;
                         T /= 0.25f;
                     }
-                    if (T.isBlack()) return T;
-                }
-            }
-            const float pdf = tMaj[h];
+                    return !T.isBlack();
+                });
+            if (!tMaj) return SampledSpectrum(wl.size(), 0.0f);
+            const float pdf = (*tMaj)[h];
             if (!(pdf > 0)) return SampledSpectrum(wl.size(), 0.0f);
-            T *= tMaj / pdf;
-            rL *= tMaj / pdf;
-            rU *= tMaj / pdf;
+            T *= *tMaj / pdf;
+            rL *= *tMaj / pdf;
+            rU *= *tMaj / pdf;
         }
         if (!hit) return T;
         medium = mediumAfter(scene, *hit, dir, medium);
