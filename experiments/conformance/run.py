@@ -100,12 +100,19 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         if args.perturb:   # the same kind of edit with its neutral value (albedo=1, fov=0)
             ref_scene = perturb.perturbed_copy(original, perturb.neutral(args.perturb), workdir / f"{name}_neutral")
         ref_mean, ref_var, ref_n = render(render_exe, ref_scene, mode, 4 * spp, args.seed + 1000, workdir / f"{name}_{mode}_ref")
+        ref_sample_var = ref_var * ref_n
     if ref_mean.shape != mean.shape:
         return {**row, "verdict": f"fail: image size {mean.shape[1]}x{mean.shape[0]}, reference {ref_mean.shape[1]}x{ref_mean.shape[0]}",
                 "spp": spp}
     var = welch.floor_by_reference(var, spp, ref_var, ref_n)   # rare-event pixels (welch.py)
     r = welch.multiscale_test(mean, var, spp, ref_mean, ref_var, ref_n, SIGNIFICANCE)
     ratios = channel_ratios(mean, ref_mean)
+    extra = {}
+    if args.reference == "mitsuba":
+        passed, fraction, _ = welch.mitsuba_z_test(mean, spp, ref_mean, ref_sample_var, SIGNIFICANCE)
+        extra = {"mitsuba_ztest": "pass" if passed else "fail", "mitsuba_ztest_fraction": fraction}
+        if not r["passed"]:
+            extra["diagnosis"] = diagnose(args, name, mode, r, mean, var, ref_mean, ref_var)
     pixel_p = r["per_scale"][1]
     if args.worst:
         print_worst_pixels(name, mode, pixel_p, mean, var, ref_mean, ref_var, args.worst)
@@ -117,7 +124,31 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
     return {**row, "verdict": "pass" if r["passed"] else "fail", "p_min": r["p_min"], "threshold": r["threshold"],
             "scale": r["scale"], "tests": r["tests"], "spp": spp, "ref_spp": ref_n,
             "rejected_pixels": int(np.count_nonzero((pixel_p <= r["threshold"]).any(axis=2))),
-            "ratio_X": ratios[0], "ratio_Y": ratios[1], "ratio_Z": ratios[2]}
+            "ratio_X": ratios[0], "ratio_Y": ratios[1], "ratio_Z": ratios[2], **extra}
+
+
+def diagnose(args, name, mode, r, mean, var, ref_mean, ref_var) -> dict:
+    """Where a render fails, compare at the failing block (or pixel) iris with Mitsuba's reference of
+    the same variant, Mitsuba's two references with each other (spectral against RGB), and iris with
+    Mitsuba's reference of the other variant: t and ratio per XYZ channel. When Mitsuba's own two
+    variants disagree there by more than their noise, no renderer can agree with both; the table of
+    docs/conformance.md shows which one iris agrees with."""
+    k = r["scale"]
+    p = r["per_scale"][k]
+    by, bx, c = np.unravel_index(np.argmin(p), p.shape)
+    other = "rgb" if mode == "spectral" else "spectral"
+    other_mean, other_sample_var = mitsuba_refs.reference(name, other, args.cache, args.scene_dir)
+    other_var = other_sample_var / mitsuba_refs.REFERENCE_SPP
+    spectral_ref, spectral_var = (ref_mean, ref_var) if mode == "spectral" else (other_mean, other_var)
+    rgb_ref, rgb_var = (ref_mean, ref_var) if mode == "rgb" else (other_mean, other_var)
+    pairs = {"iris_vs_same": (mean, var, ref_mean, ref_var),
+             "mitsuba_spectral_vs_rgb": (spectral_ref, spectral_var, rgb_ref, rgb_var),
+             "iris_vs_other": (mean, var, other_mean, other_var)}
+    out = {"scale": int(k), "block_x": int(bx), "block_y": int(by), "channel": "XYZ"[c], "other_variant": other}
+    for key, (m1, v1, m2, v2) in pairs.items():
+        t, ratio = welch.block_t_and_ratio(m1, v1, m2, v2, k, bx, by)
+        out[key] = {"t": [float(x) for x in t], "ratio": [float(x) for x in ratio]}
+    return out
 
 
 def print_worst_pixels(name, mode, pixel_p, mean, var, ref_mean, ref_var, count):

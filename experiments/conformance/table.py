@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""The conformance table (scene, mode, p-min, threshold, verdict, mean ratios) of a run of
-experiments/conformance/run.py, printed from its results.json (no numpy needed: docs/conformance.md
-embeds it through tests/architecture/doc_tables.py).
+"""The conformance table (scene, mode, p-min, threshold, verdict, Mitsuba's own test, mean ratios)
+of a run of experiments/conformance/run.py, printed from its results.json (no numpy needed:
+docs/conformance.md embeds it through tests/architecture/doc_tables.py); with --diagnosis, the
+table of the failing renders compared at their failing block with both of Mitsuba's references.
 
     python3 experiments/conformance/table.py experiments/results/conformance/results.json
+    python3 experiments/conformance/table.py --diagnosis experiments/results/conformance/results.json
 """
 from __future__ import annotations
 
@@ -28,15 +30,41 @@ def table(rows) -> str:
         return "" if "scale" not in r else ("image" if r["scale"] == 0 else f"{r['scale']}x{r['scale']}")
     cells = [{"scene": r["scene"].removeprefix("test_"), "mode": r["mode"],
               "p-min": f"{r['p_min']:.3g}" if "p_min" in r else "", "threshold": f"{r['threshold']:.3g}" if "threshold" in r else "",
-              "at": scale(r), "verdict": short_verdict(r["verdict"]),
+              "at": scale(r), "verdict": short_verdict(r["verdict"]), "Mitsuba's test": r.get("mitsuba_ztest", ""),
               "X ratio": f"{r['ratio_X']:.4f}" if "ratio_X" in r else "", "Y ratio": f"{r['ratio_Y']:.4f}" if "ratio_Y" in r else "",
               "Z ratio": f"{r['ratio_Z']:.4f}" if "ratio_Z" in r else ""} for r in rows]
-    cols = ["scene", "mode", "p-min", "threshold", "at", "verdict", "X ratio", "Y ratio", "Z ratio"]
+    cols = ["scene", "mode", "p-min", "threshold", "at", "verdict", "Mitsuba's test", "X ratio", "Y ratio", "Z ratio"]
     return markdown_table(cells, cols)
+
+
+def diagnosis_table(rows) -> str:
+    """One line per failing render: at its failing block and channel, t and ratio of iris against
+    Mitsuba's reference of the same variant, of Mitsuba's spectral reference against its RGB one,
+    and of iris against Mitsuba's reference of the other variant."""
+    def cell(d, key, channel):
+        c = "XYZ".index(channel)
+        return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
+    cells = []
+    for r in rows:
+        d = r.get("diagnosis")
+        if not d:
+            continue
+        where = "image" if d["scale"] == 0 else (f"pixel ({d['block_x']}, {d['block_y']})" if d["scale"] == 1 else
+                                                 f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})")
+        cells.append({"scene": r["scene"].removeprefix("test_"), "mode": r["mode"], "where": f"{where}, {d['channel']}",
+                      "iris / Mitsuba same variant": cell(d, "iris_vs_same", d["channel"]),
+                      "Mitsuba spectral / Mitsuba RGB": cell(d, "mitsuba_spectral_vs_rgb", d["channel"]),
+                      "iris / Mitsuba other variant": cell(d, "iris_vs_other", d["channel"])})
+    return markdown_table(cells, ["scene", "mode", "where", "iris / Mitsuba same variant",
+                                  "Mitsuba spectral / Mitsuba RGB", "iris / Mitsuba other variant"])
 
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit(f"usage: {sys.argv[0]} results.json")
-    print(table(json.loads(Path(sys.argv[1]).read_text())["rows"]))
+    args = sys.argv[1:]
+    diagnosis = args[:1] == ["--diagnosis"]
+    args = args[1:] if diagnosis else args
+    if len(args) != 1:
+        sys.exit(f"usage: {sys.argv[0]} [--diagnosis] results.json")
+    rows = json.loads(Path(args[0]).read_text())["rows"]
+    print(diagnosis_table(rows) if diagnosis else table(rows))

@@ -85,6 +85,29 @@ class WelchTest(unittest.TestCase):
         mb, vb = pixel_stats(n1, 1.01)
         self.assertFalse(welch.multiscale_test(mb, welch.floor_by_reference(vb, n1, v2, n2), n1, m2, v2, n2)["passed"])
 
+    def test_mitsuba_z_test_floors_the_variance_and_tolerates_a_quarter_percent_of_pixels(self):
+        # Mitsuba's rule (test_renders.py): the reference is exact, its per-sample variance floored
+        # at 1e-4, and 99.75 % of the channel tests must pass. Zero-variance images 0.1 % apart pass
+        # it (they fail the Welch test above); a 20 % error fails it, and so do more than 0.25 % of
+        # the pixels off by a lot.
+        one, z = np.ones((48, 48, 3)), np.zeros((48, 48, 3))
+        self.assertTrue(welch.mitsuba_z_test(1.001 * one, 868, one, z)[0])
+        self.assertFalse(welch.multiscale_test(1.001 * one, z, 868, one, z, 32000)["passed"])
+        self.assertFalse(welch.mitsuba_z_test(1.2 * one, 868, one, z)[0])
+        bad = one.copy()
+        bad[:3, :3] = 2.0          # 9 of 2304 pixels = 0.39 % > 0.25 %
+        self.assertFalse(welch.mitsuba_z_test(bad, 868, one, z)[0])
+        bad = one.copy()
+        bad[:2, :2] = 2.0          # 4 pixels = 0.17 %: tolerated
+        self.assertTrue(welch.mitsuba_z_test(bad, 868, one, z)[0])
+
+    def test_block_t_and_ratio(self):
+        a, b = np.full((8, 8, 3), 2.0), np.ones((8, 8, 3))
+        v = np.full((8, 8, 3), 0.01)
+        t, ratio = welch.block_t_and_ratio(a, v, b, v, 4, 1, 0)
+        np.testing.assert_allclose(ratio, 2.0)
+        np.testing.assert_allclose(t, 1.0 / np.sqrt(2 * 16 * 0.01 / 256))   # block variance Σv/k⁴ each
+
 
 class Perturbation(unittest.TestCase):
     def test_default_fov_of_mitsuba(self):

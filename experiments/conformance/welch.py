@@ -167,3 +167,35 @@ def multiscale_test(m1, v1, n1, m2, v2, n2, alpha=0.01, scales=SCALES):
     scale, p_min = min(((k, float(np.min(p))) for k, p in per_scale.items()), key=lambda kp: kp[1])
     return {"p_min": p_min, "threshold": float(threshold), "tests": tests, "scale": scale,
             "per_scale": per_scale, "passed": p_min > threshold}
+
+
+def mitsuba_z_test(mean, n, ref_mean, ref_sample_var, alpha=0.01, variance_floor=1e-4, accept_fraction=0.9975):
+    """Mitsuba 3's own acceptance rule (src/render/tests/test_renders.py, z_test and test_render),
+    for comparison with the stricter test above: per pixel and channel
+      z = |mean − ref| · sqrt(n / max(ref_sample_var, 1e-4)),  p = 2 (1 − Φ(z)),
+    the reference treated as exact and its per-sample variance floored at 1e-4; the Šidák level over
+    the pixel count only (α₁ = 1 − (1 − α)^(1/pixels)); the render passes when at least 99.75 % of
+    the pixels' tests do (count of passing channel tests / 3 ≥ 0.9975 · pixels). Returns (passed,
+    fraction of passing tests, smallest p)."""
+    pixels = mean.shape[0] * mean.shape[1]
+    z = np.abs(mean - ref_mean) * np.sqrt(n / np.maximum(ref_sample_var, variance_floor))
+    p = normal_two_sided_p(z)
+    level = sidak_threshold(alpha, pixels)
+    passing = np.count_nonzero(p > level)
+    return bool(passing / 3 >= accept_fraction * pixels), float(passing / p.size), float(np.min(p))
+
+
+def block_t_and_ratio(m1, v1, m2, v2, k, bx, by):
+    """The t statistic and mean ratio m1/m2 per channel of one k x k block (k = 0: the whole
+    image) at block column bx, row by; v are variances of the per-pixel means."""
+    if k == 0:
+        sl = (slice(None), slice(None))
+    else:
+        sl = (slice(by * k, (by + 1) * k), slice(bx * k, (bx + 1) * k))
+    count = m1[sl].shape[0] * m1[sl].shape[1]
+    a, b = m1[sl].mean(axis=(0, 1)), m2[sl].mean(axis=(0, 1))
+    v = (v1[sl].sum(axis=(0, 1)) + v2[sl].sum(axis=(0, 1))) / count ** 2
+    v = np.maximum(v, (RELATIVE_FLOOR * np.maximum(np.abs(a), np.abs(b))) ** 2 + 1e-30)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(b != 0, a / b, np.nan)
+    return (a - b) / np.sqrt(v), ratio
