@@ -112,7 +112,9 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         passed, fraction, _ = welch.mitsuba_z_test(mean, spp, ref_mean, ref_sample_var, SIGNIFICANCE)
         extra = {"mitsuba_ztest": "pass" if passed else "fail", "mitsuba_ztest_fraction": fraction}
         if not r["passed"]:
-            extra["diagnosis"] = diagnose(args, name, mode, r, mean, var, ref_mean, ref_var)
+            other_render = render(render_exe, scene, "rgb" if mode == "spectral" else "spectral", spp, args.seed + 500,
+                                  workdir / f"{name}_{mode}_other")
+            extra["diagnosis"] = diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render)
     pixel_p = r["per_scale"][1]
     if args.worst:
         print_worst_pixels(name, mode, pixel_p, mean, var, ref_mean, ref_var, args.worst)
@@ -127,23 +129,24 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
             "ratio_X": ratios[0], "ratio_Y": ratios[1], "ratio_Z": ratios[2], **extra}
 
 
-def diagnose(args, name, mode, r, mean, var, ref_mean, ref_var) -> dict:
+def diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render) -> dict:
     """Where a render fails, compare at the failing block (or pixel) iris with Mitsuba's reference of
-    the same variant, Mitsuba's two references with each other (spectral against RGB), and iris with
-    Mitsuba's reference of the other variant: t and ratio per XYZ channel. When Mitsuba's own two
-    variants disagree there by more than their noise, no renderer can agree with both; the table of
-    docs/conformance.md shows which one iris agrees with."""
+    the same variant, Mitsuba's two references with each other (spectral against RGB), iris's two
+    modes with each other (other_render: iris's render in the other mode, another seed), and iris
+    with Mitsuba's reference of the other variant: t and ratio per XYZ channel. When Mitsuba's own
+    two variants disagree there by more than their noise while iris's agree, no renderer can agree
+    with both of Mitsuba's; the table of docs/conformance.md shows which one iris agrees with."""
     k = r["scale"]
     p = r["per_scale"][k]
     by, bx, c = np.unravel_index(np.argmin(p), p.shape)
     other = "rgb" if mode == "spectral" else "spectral"
-    other_mean, other_sample_var = mitsuba_refs.reference(name, other, args.cache, args.scene_dir)
-    other_var = other_sample_var / mitsuba_refs.REFERENCE_SPP
-    spectral_ref, spectral_var = (ref_mean, ref_var) if mode == "spectral" else (other_mean, other_var)
-    rgb_ref, rgb_var = (ref_mean, ref_var) if mode == "rgb" else (other_mean, other_var)
-    pairs = {"iris_vs_same": (mean, var, ref_mean, ref_var),
-             "mitsuba_spectral_vs_rgb": (spectral_ref, spectral_var, rgb_ref, rgb_var),
-             "iris_vs_other": (mean, var, other_mean, other_var)}
+    mitsuba_other, mitsuba_other_sample_var = mitsuba_refs.reference(name, other, args.cache, args.scene_dir)
+    mitsuba = {mode: (ref_mean, ref_var), other: (mitsuba_other, mitsuba_other_sample_var / mitsuba_refs.REFERENCE_SPP)}
+    iris = {mode: (mean, var), other: other_render[:2]}
+    pairs = {"iris_vs_same": (*iris[mode], *mitsuba[mode]),
+             "mitsuba_spectral_vs_rgb": (*mitsuba["spectral"], *mitsuba["rgb"]),
+             "iris_spectral_vs_rgb": (*iris["spectral"], *iris["rgb"]),
+             "iris_vs_other": (*iris[mode], *mitsuba[other])}
     out = {"scale": int(k), "block_x": int(bx), "block_y": int(by), "channel": "XYZ"[c], "other_variant": other}
     for key, (m1, v1, m2, v2) in pairs.items():
         t, ratio = welch.block_t_and_ratio(m1, v1, m2, v2, k, bx, by)

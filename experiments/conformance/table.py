@@ -40,7 +40,8 @@ def table(rows) -> str:
 def diagnosis_table(rows) -> str:
     """One line per failing render: at its failing block and channel, t and ratio of iris against
     Mitsuba's reference of the same variant, of Mitsuba's spectral reference against its RGB one,
-    and of iris against Mitsuba's reference of the other variant."""
+    of iris's spectral render against its RGB one, and of iris against Mitsuba's reference of the
+    other variant."""
     def cell(d, key, channel):
         c = "XYZ".index(channel)
         return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
@@ -54,9 +55,10 @@ def diagnosis_table(rows) -> str:
         cells.append({"scene": r["scene"].removeprefix("test_"), "mode": r["mode"], "where": f"{where}, {d['channel']}",
                       "iris / Mitsuba same variant": cell(d, "iris_vs_same", d["channel"]),
                       "Mitsuba spectral / Mitsuba RGB": cell(d, "mitsuba_spectral_vs_rgb", d["channel"]),
+                      "iris spectral / iris RGB": cell(d, "iris_spectral_vs_rgb", d["channel"]),
                       "iris / Mitsuba other variant": cell(d, "iris_vs_other", d["channel"])})
     return markdown_table(cells, ["scene", "mode", "where", "iris / Mitsuba same variant",
-                                  "Mitsuba spectral / Mitsuba RGB", "iris / Mitsuba other variant"])
+                                  "Mitsuba spectral / Mitsuba RGB", "iris spectral / iris RGB", "iris / Mitsuba other variant"])
 
 
 
