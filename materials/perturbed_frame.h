@@ -14,6 +14,7 @@
 #include "core/frame.h"
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/nested_materials.h"
 
 namespace iris {
 
@@ -165,41 +166,5 @@ private:
     std::shared_ptr<Material> nested_;
     PerturbOptions opt_;
 };
-
-/// The nested object under parameter `name` of a wrapper; any other value there is an unknown
-/// parameter of the wrapper (error naming it and the known ones).
-inline PropertiesPtr nestedObjectOrFail(const Properties& p, const std::string& name, const std::string& plugin,
-                                        const std::set<std::string>& ownParams) {
-    try {
-        return p.getObject(name);
-    } catch (const Error&) {
-        std::string known;
-        for (const auto& k : ownParams) known += (known.empty() ? "" : ", ") + k;
-        failAt(p.locationOf(name), "unknown parameter '", name, "' of bsdf '", plugin, "' (known parameters: ", known,
-               ", and nested objects)");
-    }
-}
-
-/// The one material nested in a wrapper `plugin` (Mitsuba style: an unnamed <bsdf> child, or a
-/// <bsdf> under any parameter name not listed in `ownParams`); cached in the child's
-/// Properties::instance like every other scene object. Errors name the wrapper's location.
-inline std::shared_ptr<Material> createNestedMaterial(const Properties& p, const std::string& plugin,
-                                                     const std::set<std::string>& ownParams) {
-    std::vector<PropertiesPtr> nested;
-    for (const PropertiesPtr& c : p.children())
-        if (c->tag() == "bsdf") nested.push_back(c);
-    for (const std::string& name : p.names()) {
-        if (ownParams.count(name)) continue;
-        const PropertiesPtr obj = nestedObjectOrFail(p, name, plugin, ownParams);
-        if (obj->tag() == "bsdf") nested.push_back(obj);
-    }
-    if (nested.size() != 1)
-        failAt(p.location(), plugin, ": expected exactly one nested bsdf, got ", nested.size());
-    const PropertiesPtr& child = nested[0];
-    if (child->instance) return std::static_pointer_cast<Material>(child->instance);
-    auto m = MaterialRegistry::instance().create(*child);
-    child->instance = m;
-    return m;
-}
 
 }  // namespace iris
