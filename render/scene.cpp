@@ -7,6 +7,7 @@
 #include "core/properties.h"
 #include "core/registry.h"
 #include "materials/material.h"
+#include "render/cylinder_intersection.h"
 #include "render/sphere_intersection.h"
 
 namespace iris {
@@ -24,48 +25,91 @@ void embreeError(void*, RTCError code, const char* str) {
     (void)str;
 }
 
-// Spheres are Embree user geometry (one primitive each) intersected analytically in double
-// precision (render/sphere_intersection.h). The scene only calls rtcIntersect1 and
-// rtcOccluded1, so Embree calls these with one ray (N = 1).
-void sphereBounds(const RTCBoundsFunctionArguments* args) {
-    const auto* s = static_cast<const ShapeDescription*>(args->geometryUserPtr);
+// The analytic shapes (spheres, cylinders) are Embree user geometry, one primitive each,
+// intersected in double precision (render/sphere_intersection.h, render/cylinder_intersection.h).
+// The scene only calls rtcIntersect1 and rtcOccluded1, so Embree calls these with one ray (N = 1).
+// Scene::intersect computes the surface interaction from the hit point; Ng is only a placeholder.
+struct SphereShape {
+    static double hit(const ShapeDescription& s, const RTCRay& r) {
+        return intersectSphere(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), dvec3(s.center),
+                               double(s.radius), double(r.tnear), double(r.tfar));
+    }
+    static void bounds(const ShapeDescription& s, vec3& lo, vec3& hi) {
+        lo = s.center - vec3(s.radius);
+        hi = s.center + vec3(s.radius);
+    }
+};
+
+struct CylinderShape {
+    static double hit(const ShapeDescription& s, const RTCRay& r) {
+        return intersectCylinder(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), s.cylinder,
+                                 double(s.radius), double(r.tnear), double(r.tfar));
+    }
+    /// The two end circles' bounding boxes: a circle of radius r around the unit axis a extends
+    /// r·sqrt(1 − a_i²) along world axis i.
+    static void bounds(const ShapeDescription& s, vec3& lo, vec3& hi) {
+        const CylinderGeometry& c = s.cylinder;
+        const vec3 p1 = c.p0 + c.length * c.axis;
+        const vec3 e = s.radius * glm::sqrt(glm::max(vec3(0.0f), vec3(1.0f) - c.axis * c.axis));
+        lo = glm::min(c.p0, p1) - e;
+        hi = glm::max(c.p0, p1) + e;
+    }
+};
+
+template <class G>
+void userBounds(const RTCBoundsFunctionArguments* args) {
+    const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
+    vec3 lo, hi;
+    G::bounds(s, lo, hi);
     // Padded by a few float ulps of the extent so that rounding the bounds to float never clips.
-    const float pad = 1e-6f * (s->radius + std::max({std::abs(s->center.x), std::abs(s->center.y), std::abs(s->center.z)}));
+    const vec3 m = glm::max(glm::abs(lo), glm::abs(hi));
+    const float pad = 1e-6f * (glm::length(hi - lo) + std::max({m.x, m.y, m.z}));
     RTCBounds* b = args->bounds_o;
-    b->lower_x = s->center.x - s->radius - pad;
-    b->lower_y = s->center.y - s->radius - pad;
-    b->lower_z = s->center.z - s->radius - pad;
-    b->upper_x = s->center.x + s->radius + pad;
-    b->upper_y = s->center.y + s->radius + pad;
-    b->upper_z = s->center.z + s->radius + pad;
+    b->lower_x = lo.x - pad;
+    b->lower_y = lo.y - pad;
+    b->lower_z = lo.z - pad;
+    b->upper_x = hi.x + pad;
+    b->upper_y = hi.y + pad;
+    b->upper_z = hi.z + pad;
 }
 
-double sphereHit(const ShapeDescription& s, const RTCRay& r) {
-    return intersectSphere(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), dvec3(s.center),
-                           double(s.radius), double(r.tnear), double(r.tfar));
-}
-
-void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+template <class G>
+void userIntersect(const RTCIntersectFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
     RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(args->rayhit);
-    const double t = sphereHit(s, rh.ray);
+    const double t = G::hit(s, rh.ray);
     if (!std::isfinite(t)) return;
     rh.ray.tfar = float(t);  // ≤ the old tfar: rounding is monotone and the old tfar is a float
-    rh.hit.Ng_x = float(rh.ray.org_x + t * rh.ray.dir_x - s.center.x);  // Scene::intersect renormalises
-    rh.hit.Ng_y = float(rh.ray.org_y + t * rh.ray.dir_y - s.center.y);
-    rh.hit.Ng_z = float(rh.ray.org_z + t * rh.ray.dir_z - s.center.z);
+    rh.hit.Ng_x = rh.hit.Ng_y = 0.0f;
+    rh.hit.Ng_z = 1.0f;
     rh.hit.u = rh.hit.v = 0.0f;
     rh.hit.primID = args->primID;
     rh.hit.geomID = args->geomID;
     rh.hit.instID[0] = args->context->instID[0];
 }
 
-void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+template <class G>
+void userOccluded(const RTCOccludedFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
     RTCRay& r = *reinterpret_cast<RTCRay*>(args->ray);
-    if (std::isfinite(sphereHit(s, r))) r.tfar = -std::numeric_limits<float>::infinity();
+    if (std::isfinite(G::hit(s, r))) r.tfar = -std::numeric_limits<float>::infinity();
+}
+
+template <class G>
+RTCGeometry userGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo, vec3& hi) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, const_cast<ShapeDescription*>(&s));
+    rtcSetGeometryBoundsFunction(geom, userBounds<G>, nullptr);
+    rtcSetGeometryIntersectFunction(geom, userIntersect<G>);
+    rtcSetGeometryOccludedFunction(geom, userOccluded<G>);
+    vec3 l, h;
+    G::bounds(s, l, h);
+    lo = glm::min(lo, l);
+    hi = glm::max(hi, h);
+    return geom;
 }
 
 void checkDevice(RTCDevice device, const char* what) {
@@ -112,17 +156,16 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
                 hi = glm::max(hi, p);
             }
             if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), s.emission));
-        } else {
+        } else if (s.type == ShapeDescription::Type::Sphere) {
             if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
-            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-            rtcSetGeometryUserPrimitiveCount(geom, 1);
-            rtcSetGeometryUserData(geom, const_cast<ShapeDescription*>(&s));
-            rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
-            rtcSetGeometryIntersectFunction(geom, sphereIntersect);
-            rtcSetGeometryOccludedFunction(geom, sphereOccluded);
-            lo = glm::min(lo, s.center - vec3(s.radius));
-            hi = glm::max(hi, s.center + vec3(s.radius));
+            geom = userGeometry<SphereShape>(device, s, lo, hi);
             if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, s.emission));
+        } else {
+            const CylinderGeometry& c = s.cylinder;
+            if (!(s.radius > 0) || !(c.length > 0) || !isFinite(c.p0) || !isFinite(c.axis))
+                fail("cylinder '", s.name, "' has an invalid radius, length or position");
+            geom = userGeometry<CylinderShape>(device, s, lo, hi);
+            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(c, s.radius, s.flipNormals, s.emission));
         }
         if (s.emission) sd.areaLight = lights_.back().get();
         rtcCommitGeometry(geom);
@@ -148,6 +191,32 @@ Scene::~Scene() {
     if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
     if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
 }
+
+namespace {
+/// The cylinder's surface interaction at the hit point si.p (Mitsuba 3, src/shapes/cylinder.cpp):
+/// with the hit's local coordinates (x, y, z) in the cylinder's frame (world units), u = φ/2π,
+/// v = z / length, ∂p/∂u = 2π (−y s + x t), ∂p/∂v = length · axis and the normal
+/// normalize(∂p/∂u × ∂p/∂v) (outwards), negated by flip_normals. The hit point is re-projected onto
+/// the wall to reduce its error.
+void cylinderInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
+    const CylinderGeometry& c = s.cylinder;
+    const vec3 f = si.p - c.p0;
+    const float z = glm::dot(f, c.axis);
+    const float x = glm::dot(f, c.s), y = glm::dot(f, c.t);
+    const float rl = std::sqrt(x * x + y * y);
+    const vec3 radial = rl > 0 ? (x * c.s + y * c.t) / rl : c.s;
+    si.p = c.p0 + z * c.axis + s.radius * radial;
+    const float phi = std::atan2(y, x);
+    si.uv = vec2((phi < 0 ? phi + 2 * kPi : phi) * kInv2Pi, z / c.length);
+    const float xr = s.radius * (rl > 0 ? x / rl : 1.0f), yr = s.radius * (rl > 0 ? y / rl : 0.0f);
+    si.dpdu = 2 * kPi * (-yr * c.s + xr * c.t);
+    si.dpdv = c.length * c.axis;
+    si.dpScale = 1.0f;
+    vec3 n = glm::normalize(glm::cross(si.dpdu, si.dpdv));
+    if (s.flipNormals) n = -n;
+    si.ng = si.ns = n;
+}
+}  // namespace
 
 std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
     RTCIntersectContext ctx;
@@ -213,6 +282,8 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
         } else {
             si.ns = si.ng;
         }
+    } else if (s.type == ShapeDescription::Type::Cylinder) {
+        cylinderInteraction(s, si);
     } else {
         vec3 n = glm::normalize(si.p - s.center);
         // Re-project onto the sphere to reduce the hit point's error.

@@ -17,6 +17,7 @@
 #include "materials/media/medium.h"
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
+#include "render/cylinder_intersection.h"
 #include "render/sensors/sensor.h"
 #include "spectral/spectrum.h"
 
@@ -25,11 +26,12 @@ namespace iris {
 class Light;
 
 struct ShapeDescription {
-    enum class Type { Mesh, Sphere } type = Type::Mesh;
+    enum class Type { Mesh, Sphere, Cylinder } type = Type::Mesh;
     std::shared_ptr<TriangleMesh> mesh;  // Mesh: already in world space
     vec3 center{0.0f};                   // Sphere (world space)
-    float radius = 1.0f;
-    bool flipNormals = false;            // Sphere: normals point inwards
+    float radius = 1.0f;                 // Sphere, Cylinder
+    CylinderGeometry cylinder;           // Cylinder (world space)
+    bool flipNormals = false;            // Sphere, Cylinder: normals point inwards
     bool faceNormals = false;            // Mesh: ignore vertex normals
     MaterialPtr material;                // nullptr: the default diffuse (0.5) material
     SpectrumPtr emission;                // area emitter radiance (Illuminant kind), or nullptr

@@ -4,7 +4,8 @@
 
 namespace iris {
 
-AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance) : mesh_(mesh), radiance_(std::move(radiance)) {
+AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance)
+    : kind_(Kind::Mesh), mesh_(mesh), radiance_(std::move(radiance)) {
     std::vector<float> areas(mesh->triangleCount());
     for (size_t i = 0; i < areas.size(); ++i) {
         const vec3& a = mesh->positions[mesh->indices[3 * i]];
@@ -17,7 +18,32 @@ AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance) : mesh_(mes
 }
 
 AreaLight::AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance)
-    : center_(center), radius_(radius), inward_(inward), area_(4.0f * kPi * radius * radius), radiance_(std::move(radiance)) {}
+    : kind_(Kind::Sphere), center_(center), radius_(radius), inward_(inward), area_(4.0f * kPi * radius * radius),
+      radiance_(std::move(radiance)) {}
+
+AreaLight::AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumPtr radiance)
+    : kind_(Kind::Cylinder), cylinder_(cylinder), radius_(radius), inward_(inward),
+      area_(2.0f * kPi * radius * cylinder.length), radiance_(std::move(radiance)) {}
+
+void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n) const {
+    if (kind_ == Kind::Cylinder) {
+        // Mitsuba 3 Cylinder::sample_position: φ = 2π u.y, position u.x · length along the axis.
+        const CylinderGeometry& c = cylinder_;
+        const float phi = 2 * kPi * u.y;
+        const vec3 radial = std::cos(phi) * c.s + std::sin(phi) * c.t;
+        p = c.p0 + u.x * c.length * c.axis + radius_ * radial;
+        n = inward_ ? -radial : radial;
+        return;
+    }
+    // Pick a triangle by area, then a point on it (pdf_A = 1/A).
+    float uRemapped;
+    const int tri = triangles_.sampleDiscrete(u.x, nullptr, &uRemapped);
+    const vec2 b = sampleUniformTriangle(vec2(uRemapped, u.y));
+    const uint32_t* idx = &mesh_->indices[3 * tri];
+    const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
+    p = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
+    n = glm::normalize(glm::cross(bb - a, c - a));
+}
 
 SampledSpectrum AreaLight::Le(const vec3&, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
     if (glm::dot(n, w) <= 0) return SampledSpectrum(wl.size());  // one-sided emitter
@@ -26,15 +52,9 @@ SampledSpectrum AreaLight::Le(const vec3&, const vec3& n, const vec3& w, const S
 
 std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const {
     LightSample ls;
-    if (mesh_) {
-        // Uniform area sampling: pick a triangle by area, then a point on it (pdf_A = 1/A).
-        float uRemapped;
-        const int tri = triangles_.sampleDiscrete(u.x, nullptr, &uRemapped);
-        const vec2 b = sampleUniformTriangle(vec2(uRemapped, u.y));
-        const uint32_t* idx = &mesh_->indices[3 * tri];
-        const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
-        ls.pLight = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
-        ls.nLight = glm::normalize(glm::cross(bb - a, c - a));
+    if (kind_ != Kind::Sphere) {
+        // Uniform area sampling (pdf_A = 1/A), converted to solid angle.
+        sampleArea(u, ls.pLight, ls.nLight);
         const vec3 d = ls.pLight - p;
         const float dist2 = glm::dot(d, d);
         if (dist2 <= 0) return std::nullopt;
@@ -81,7 +101,7 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
 
 float AreaLight::pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const {
     if (!hit) return 0.0f;
-    if (!mesh_) {
+    if (kind_ == Kind::Sphere) {
         const vec3 toC = center_ - p;
         const float dc2 = glm::dot(toC, toC);
         if (dc2 > radius_ * radius_ * 1.00001f) return uniformConePdf(safeSqrt(1.0f - radius_ * radius_ / dc2));

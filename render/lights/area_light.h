@@ -1,5 +1,6 @@
 // Diffuse area light attached to a shape (Mitsuba "area" emitter): uniform radiance on the side
-// the surface normal points to. Meshes are sampled uniformly by area; spheres by the cone of
+// the surface normal points to. Meshes and cylinders are sampled uniformly by area (a cylinder as
+// Mitsuba 3's sample_position: φ and the axial position uniform); spheres by the cone of
 // directions they subtend (pbrt-v4 §6.2.4).
 #pragma once
 
@@ -8,6 +9,7 @@
 #include "render/lights/light.h"
 #include "core/mesh.h"
 #include "core/sampling.h"
+#include "render/cylinder_intersection.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
@@ -18,6 +20,8 @@ public:
     AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance);
     /// Sphere emitter; `inward` when the sphere's normals are flipped.
     AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance);
+    /// Open cylinder emitter (world space); `inward` when its normals are flipped.
+    AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumPtr radiance);
 
     Type type() const override { return Type::Area; }
     std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const override;
@@ -26,8 +30,13 @@ public:
     float area() const { return area_; }
 
 private:
+    /// Uniform area sample of the mesh or cylinder (point and normal).
+    void sampleArea(const vec2& u, vec3& p, vec3& n) const;
+
+    enum class Kind { Mesh, Sphere, Cylinder } kind_;
     const TriangleMesh* mesh_ = nullptr;
     Distribution1D triangles_;
+    CylinderGeometry cylinder_;
     vec3 center_{0.0f};
     float radius_ = 0.0f;
     bool inward_ = false;

@@ -34,9 +34,12 @@ ShapeChildren readChildren(const Properties& p) {
 }
 
 /// A medium needs a boundary that separates its inside from the rest (Mitsuba: "interior" is the
-/// side the normals point away from): spheres are closed; a mesh must have every edge shared by
+/// side the normals point away from): spheres are closed, cylinders (no caps) are not; a mesh must have every edge shared by
 /// exactly two triangles, with vertices welded by position (so that uv seams do not count).
 void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
+    if (s.type == ShapeDescription::Type::Cylinder)
+        failAt(p.locationOf("interior"), "shape '", s.name, "' has an interior medium but a cylinder has no end caps: a "
+               "medium needs a closed boundary (use a closed mesh, obj or ply, or a sphere)");
     if (s.type != ShapeDescription::Type::Mesh || !s.mesh) return;
     const size_t open = openEdgeCount(*s.mesh);
     if (open > 0)
