@@ -139,6 +139,9 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
         ShapeData& sd = shapes_[i];
         sd.desc = &s;
         sd.material = s.material ? s.material.get() : defaultMaterial_.get();
+        const bool emits = s.emission || s.emissionTexture;
+        const SpectrumTexturePtr radiance =
+            s.emissionTexture ? s.emissionTexture : s.emission ? std::make_shared<ConstantSpectrumTexture>(s.emission) : nullptr;
         RTCGeometry geom;
         if (s.type == ShapeDescription::Type::Mesh) {
             if (!s.mesh) fail("shape '", s.name, "' has no mesh");
@@ -155,19 +158,19 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
                 lo = glm::min(lo, p);
                 hi = glm::max(hi, p);
             }
-            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), s.emission));
+            if (emits) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), radiance));
         } else if (s.type == ShapeDescription::Type::Sphere) {
             if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
             geom = userGeometry<SphereShape>(device, s, lo, hi);
-            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, s.emission));
+            if (emits) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, radiance));
         } else {
             const CylinderGeometry& c = s.cylinder;
             if (!(s.radius > 0) || !(c.length > 0) || !isFinite(c.p0) || !isFinite(c.axis))
                 fail("cylinder '", s.name, "' has an invalid radius, length or position");
             geom = userGeometry<CylinderShape>(device, s, lo, hi);
-            if (s.emission) lights_.push_back(std::make_shared<AreaLight>(c, s.radius, s.flipNormals, s.emission));
+            if (emits) lights_.push_back(std::make_shared<AreaLight>(c, s.radius, s.flipNormals, radiance));
         }
-        if (s.emission) sd.areaLight = lights_.back().get();
+        if (emits) sd.areaLight = lights_.back().get();
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(scene, geom, unsigned(i));
         rtcReleaseGeometry(geom);
@@ -291,8 +294,7 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
         if (s.flipNormals) n = -n;
         si.ng = si.ns = n;
         const vec3 local = (si.p - s.center) / s.radius;
-        const float phi = std::atan2(local.y, local.x);
-        si.uv = vec2((phi < 0 ? phi + 2 * kPi : phi) * kInv2Pi, safeAcos(local.z) * kInvPi);
+        si.uv = sphereUV(local);
         // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
         // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
         // position (x, y, z) = (sin θ cos φ, sin θ sin φ, cos θ). At the poles (sin θ = 0) both

@@ -35,6 +35,7 @@ struct ShapeDescription {
     bool faceNormals = false;            // Mesh: ignore vertex normals
     MaterialPtr material;                // nullptr: the default diffuse (0.5) material
     SpectrumPtr emission;                // area emitter radiance (Illuminant kind), or nullptr
+    SpectrumTexturePtr emissionTexture;  // a textured area emitter radiance (then emission is nullptr)
     // Participating media on the two sides (Mitsuba's `interior` and `exterior`), or nullptr for
     // vacuum / "no change"; a shape with either is a medium transition (integrators/volpath.cpp).
     MediumPtr interior, exterior;

@@ -31,4 +31,11 @@ inline double intersectSphere(const dvec3& o, const dvec3& d, const dvec3& c, do
     return std::numeric_limits<double>::infinity();
 }
 
+/// Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp) of the unit vector n from the
+/// centre: u = φ/2π with φ = atan2(n.y, n.x) in [0, 2π), v = θ/π with θ = acos(n.z).
+inline vec2 sphereUV(const vec3& n) {
+    const float phi = std::atan2(n.y, n.x);
+    return vec2((phi < 0 ? phi + 2 * kPi : phi) * kInv2Pi, safeAcos(n.z) * kInvPi);
+}
+
 }  // namespace iris

@@ -4,7 +4,7 @@
 
 namespace iris {
 
-AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance)
+AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumTexturePtr radiance)
     : kind_(Kind::Mesh), mesh_(mesh), radiance_(std::move(radiance)) {
     std::vector<float> areas(mesh->triangleCount());
     for (size_t i = 0; i < areas.size(); ++i) {
@@ -17,15 +17,15 @@ AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance)
     triangles_ = Distribution1D(areas);
 }
 
-AreaLight::AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance)
+AreaLight::AreaLight(const vec3& center, float radius, bool inward, SpectrumTexturePtr radiance)
     : kind_(Kind::Sphere), center_(center), radius_(radius), inward_(inward), area_(4.0f * kPi * radius * radius),
       radiance_(std::move(radiance)) {}
 
-AreaLight::AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumPtr radiance)
+AreaLight::AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumTexturePtr radiance)
     : kind_(Kind::Cylinder), cylinder_(cylinder), radius_(radius), inward_(inward),
       area_(2.0f * kPi * radius * cylinder.length), radiance_(std::move(radiance)) {}
 
-void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n) const {
+void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const {
     if (kind_ == Kind::Cylinder) {
         // Mitsuba 3 Cylinder::sample_position: φ = 2π u.y, position u.x · length along the axis.
         const CylinderGeometry& c = cylinder_;
@@ -33,6 +33,7 @@ void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n) const {
         const vec3 radial = std::cos(phi) * c.s + std::sin(phi) * c.t;
         p = c.p0 + u.x * c.length * c.axis + radius_ * radial;
         n = inward_ ? -radial : radial;
+        uv = vec2(u.y, u.x);  // the cylinder's uv (render/scene.cpp): φ/2π, position / length
         return;
     }
     // Pick a triangle by area, then a point on it (pdf_A = 1/A).
@@ -43,18 +44,29 @@ void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n) const {
     const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
     p = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
     n = glm::normalize(glm::cross(bb - a, c - a));
+    // The uv the scene gives a hit there (render/scene.cpp; (0,0), (1,0), (1,1) without uvs).
+    vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
+    if (!mesh_->uvs.empty()) {
+        uv0 = mesh_->uvs[idx[0]];
+        uv1 = mesh_->uvs[idx[1]];
+        uv2 = mesh_->uvs[idx[2]];
+    }
+    uv = b.x * uv0 + b.y * uv1 + (1 - b.x - b.y) * uv2;
 }
 
-SampledSpectrum AreaLight::Le(const vec3&, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
+SampledSpectrum AreaLight::Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const {
     if (glm::dot(n, w) <= 0) return SampledSpectrum(wl.size());  // one-sided emitter
-    return radiance_->sample(wl);
+    TextureQuery q;
+    q.uv = uv;
+    q.p = p;
+    return radiance_->eval(q, wl);
 }
 
 std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const {
     LightSample ls;
     if (kind_ != Kind::Sphere) {
         // Uniform area sampling (pdf_A = 1/A), converted to solid angle.
-        sampleArea(u, ls.pLight, ls.nLight);
+        sampleArea(u, ls.pLight, ls.nLight, ls.uv);
         const vec3 d = ls.pLight - p;
         const float dist2 = glm::dot(d, d);
         if (dist2 <= 0) return std::nullopt;
@@ -70,6 +82,7 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
             const vec3 n = sampleUniformSphere(u);
             ls.pLight = center_ + radius_ * n;
             ls.nLight = inward_ ? -n : n;
+            ls.uv = sphereUV(n);
             const vec3 d = ls.pLight - p;
             const float dist2 = glm::dot(d, d);
             if (dist2 <= 0) return std::nullopt;
@@ -91,10 +104,11 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
             ls.pLight = p + t * ls.wi;
             const vec3 n = glm::normalize(ls.pLight - center_);
             ls.nLight = inward_ ? -n : n;
+            ls.uv = sphereUV(n);
             ls.pdf = uniformConePdf(cosMax);
         }
     }
-    ls.L = Le(ls.pLight, ls.nLight, -ls.wi, wl);
+    ls.L = Le(ls.pLight, ls.nLight, ls.uv, -ls.wi, wl);
     if (ls.L.isBlack()) return std::nullopt;
     return ls;
 }

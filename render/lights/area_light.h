@@ -1,7 +1,10 @@
 // Diffuse area light attached to a shape (Mitsuba "area" emitter): uniform radiance on the side
 // the surface normal points to. Meshes and cylinders are sampled uniformly by area (a cylinder as
 // Mitsuba 3's sample_position: φ and the axial position uniform); spheres by the cone of
-// directions they subtend (pbrt-v4 §6.2.4).
+// directions they subtend (pbrt-v4 §6.2.4). The radiance may be a texture over the shape's uv
+// (Mitsuba's area emitter with a textured `radiance`), looked up at the hit's or the sampled
+// point's uv; sampling stays uniform by area (Mitsuba 3 importance-samples such a texture through
+// the shape's parametrisation: same expectation, other variance).
 #pragma once
 
 #include <vector>
@@ -9,7 +12,9 @@
 #include "render/lights/light.h"
 #include "core/mesh.h"
 #include "core/sampling.h"
+#include "materials/textures/texture.h"
 #include "render/cylinder_intersection.h"
+#include "render/sphere_intersection.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
@@ -17,21 +22,21 @@ namespace iris {
 class AreaLight final : public Light {
 public:
     /// Mesh emitter (mesh in world space; must outlive the light).
-    AreaLight(const TriangleMesh* mesh, SpectrumPtr radiance);
+    AreaLight(const TriangleMesh* mesh, SpectrumTexturePtr radiance);
     /// Sphere emitter; `inward` when the sphere's normals are flipped.
-    AreaLight(const vec3& center, float radius, bool inward, SpectrumPtr radiance);
+    AreaLight(const vec3& center, float radius, bool inward, SpectrumTexturePtr radiance);
     /// Open cylinder emitter (world space); `inward` when its normals are flipped.
-    AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumPtr radiance);
+    AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumTexturePtr radiance);
 
     Type type() const override { return Type::Area; }
     std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const override;
     float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const override;
-    SampledSpectrum Le(const vec3& p, const vec3& n, const vec3& w, const SampledWavelengths& wl) const override;
+    SampledSpectrum Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const override;
     float area() const { return area_; }
 
 private:
-    /// Uniform area sample of the mesh or cylinder (point and normal).
-    void sampleArea(const vec2& u, vec3& p, vec3& n) const;
+    /// Uniform area sample of the mesh or cylinder (point, normal and uv).
+    void sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const;
 
     enum class Kind { Mesh, Sphere, Cylinder } kind_;
     const TriangleMesh* mesh_ = nullptr;
@@ -41,7 +46,7 @@ private:
     float radius_ = 0.0f;
     bool inward_ = false;
     float area_ = 0.0f;
-    SpectrumPtr radiance_;
+    SpectrumTexturePtr radiance_;
 };
 
 }  // namespace iris

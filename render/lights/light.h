@@ -24,6 +24,7 @@ struct LightSample {
     float pdf = 0.0f;       // solid-angle density (or 1 for delta lights)
     vec3 pLight{0.0f};      // point on the light (for the shadow ray)
     vec3 nLight{0.0f};      // light surface normal (area lights), for the shadow ray's end offset
+    vec2 uv{0.0f};          // the light surface's uv there (area lights)
     bool infinite = false;  // shadow ray goes to infinity
 };
 
@@ -45,9 +46,9 @@ public:
     /// `hit` is the intersection with this light; for infinite lights hit is unused.
     virtual float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const { return 0.0f; }
 
-    /// Emitted radiance: area lights at a surface point towards w; infinite lights for a ray
-    /// leaving the scene in direction w (p unused).
-    virtual SampledSpectrum Le(const vec3& p, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
+    /// Emitted radiance: area lights at a surface point (position p, normal n, surface uv) towards
+    /// w; infinite lights for a ray leaving the scene in direction w (p, n and uv unused).
+    virtual SampledSpectrum Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const {
         return SampledSpectrum(wl.size());
     }
 };

@@ -3,6 +3,7 @@
 #include <tuple>
 
 #include "core/mesh.h"
+#include "materials/textures/texture_params.h"
 #include "render/shapes/shape.h"
 #include "spectral/spectrum_params.h"
 
@@ -47,6 +48,14 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
+/// True when an area emitter's `radiance` is a <texture> object (not a value or <spectrum>).
+bool radianceIsTexture(const Properties& emitter) {
+    const Properties probe = emitter;  // looks at the value without marking it as read
+    const Properties::Entry* e = probe.find("radiance");
+    const PropertiesPtr* obj = e ? std::get_if<PropertiesPtr>(&e->value) : nullptr;
+    return obj && (*obj)->tag() == "texture";
+}
+
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
     if (c.bsdf) {
         if (c.bsdf->tag() != "bsdf") failAt(p.locationOf("bsdf"), "parameter 'bsdf' must be a <bsdf>");
@@ -56,7 +65,10 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
         if (c.emitter->type() != "area")
             failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area')");
-        s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
+        if (radianceIsTexture(*c.emitter))  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
+            s.emissionTexture = getSpectrumTexture(*c.emitter, "radiance", SpectrumKind::Illuminant);
+        else
+            s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
         c.emitter->checkUnqueried();
     }
     for (const auto& [name, obj, slot] : {std::tuple{"interior", c.interior, &s.interior}, std::tuple{"exterior", c.exterior, &s.exterior}}) {
