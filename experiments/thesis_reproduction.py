@@ -6,6 +6,8 @@
   Fig. 4.4  roughness α ∈ {0.9, 0.5, 0.1, 0.05, 0.01} (proposed model)
   Table 4.5 render time of Granier vs the proposed model at 16–1024 spp, direct (max_depth 2) and
             global illumination (thesis: the proposed model is 2.7–12 % slower).
+Beyond the thesis: error against wall time of each model (d = 350 nm) with the independent and the
+Sobol sampler, against a converged render of that model (issue 15's convergence curves).
 The scenes declare <default> parameters thickness, eta_t ("r, g, b"), wavelengths ("r, g, b" nm),
 alpha (proposed) and max_depth. Each sweep changes one parameter; the others keep the scene's defaults (which should be the
 thesis' Table 3.1 values for Granier and Table 4.2 for the proposed model).
@@ -20,6 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import grid  # noqa: E402
 from iris_experiments.collect import job_row  # noqa: E402
+from iris_experiments.convergence import ConvergenceStudy  # noqa: E402
 from iris_experiments.experiment import Analysis, Experiment, run  # noqa: E402
 from iris_experiments.report import markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
@@ -38,9 +41,16 @@ WAVELENGTHS = [(645, 525, 445), (680, 520, 400)]                            # Fi
 ALPHA = [0.9, 0.5, 0.1, 0.05, 0.01]                                         # Fig. 4.4
 TIMING_SPP = [16, 64, 256, 1024]                                            # Table 4.5
 DEPTHS = {"direct": 2, "global": 8}
-FULL = {"spp": 256}
+FULL = {"spp": 256,
+        "convergence": {"spp_levels": [2 ** k for k in range(9)], "seeds": [1, 2, 3], "ref_spp": 2048,
+                        "ref_seeds": [1000, 1001], "time_limit": 10.0}}
 QUICK = {"spp": 4, "res": 32, "timing_spp": [4, 16],   # quick: fewer values per sweep
-         "values": {"thickness": [76, 1000], "eta_t": ETA_T[:2], "wavelengths": WAVELENGTHS, "alpha": [0.5, 0.05]}}
+         "values": {"thickness": [76, 1000], "eta_t": ETA_T[:2], "wavelengths": WAVELENGTHS, "alpha": [0.5, 0.05]},
+         "convergence": {"spp_levels": [1, 4], "seeds": [1, 2], "ref_spp": 16, "ref_seeds": [1000, 1001],
+                         "time_limit": 0.2}}
+# Error against wall time (issue 15): each model in RGB mode (as the thesis) at this thickness, with
+# the independent sampler (the baseline) and Owen-scrambled Sobol, against its own converged render.
+CONVERGENCE_THICKNESS = 350
 # ---------------------------------------------------------------------------------------------
 
 IMAGE_SWEEPS = [("thickness", "thickness", THICKNESS_NM, "Fig. 4.2"), ("eta_t", "eta_t", ETA_T, "Fig. 4.3"),
@@ -57,9 +67,17 @@ class ThesisReproduction(Experiment):
     def cfg(self, quick):
         return QUICK if quick else FULL
 
+    def make_study(self, quick):
+        conv = self.cfg(quick)["convergence"]
+        configs = {s: {"mode": "rgb", "sampler": s} for s in ("independent", "sobol")}
+        return ConvergenceStudy(configs, "independent", configs["independent"], conv["spp_levels"], conv["seeds"],
+                                conv["ref_spp"], conv["ref_seeds"], fixed={"thickness": CONVERGENCE_THICKNESS},
+                                time_limit=conv["time_limit"])
+
     def settings(self, quick):
         c = self.cfg(quick)
-        return {"mode": "quick" if quick else "full", "render mode": "rgb (three channels, as the thesis)",
+        return {**self.make_study(quick).settings(), "convergence thickness [nm]": CONVERGENCE_THICKNESS,
+                "mode": "quick" if quick else "full", "render mode": "rgb (three channels, as the thesis)",
                 "spp (image sweeps)": c["spp"], "timing spp": c.get("timing_spp", TIMING_SPP),
                 "max_depth": DEPTHS, "scenes": {k: v.path for k, v in self.scene_specs.items()}}
 
@@ -79,7 +97,7 @@ class ThesisReproduction(Experiment):
         sweeps.append(Sweep("timing", self.scene_paths(),
                             axes={"max_depth": list(DEPTHS.values()), "spp": c.get("timing_spp", TIMING_SPP)},
                             fixed={"mode": "rgb", "seed": 1}, per_scene=per_scene))
-        return sweeps
+        return sweeps + self.make_study(quick).sweeps(self.scene_paths(), per_scene)
 
     def analyse(self, ctx):
         rows, figures, conclusions, sections = [], [], [], []
@@ -135,7 +153,10 @@ class ThesisReproduction(Experiment):
             trows, ["illumination", "spp", "granier_s", "proposed_s", "proposed_slower_percent"])))
         cols = ["sweep", "scene", "sweep_parameter", "previous_value", "value", "de00_mean_vs_previous",
                 "de00_p99_vs_previous", "render_time_s"]
-        return Analysis(rows, cols, conclusions, sections=sections, figures=figures)
+        analysis = Analysis(rows, cols, conclusions, sections=sections, figures=figures)
+        for label in self.scene_specs:
+            analysis.add_study(self.make_study(ctx.args.quick).analyse(ctx, label))
+        return analysis
 
 
 if __name__ == "__main__":

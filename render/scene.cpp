@@ -7,8 +7,8 @@
 #include "core/properties.h"
 #include "core/registry.h"
 #include "materials/material.h"
-#include "render/cylinder_intersection.h"
-#include "render/sphere_intersection.h"
+#include "core/cylinder_intersection.h"
+#include "core/sphere_intersection.h"
 
 namespace iris {
 
@@ -26,7 +26,7 @@ void embreeError(void*, RTCError code, const char* str) {
 }
 
 // The analytic shapes (spheres, cylinders) are Embree user geometry, one primitive each,
-// intersected in double precision (render/sphere_intersection.h, render/cylinder_intersection.h).
+// intersected in double precision (core/sphere_intersection.h, core/cylinder_intersection.h).
 // The scene only calls rtcIntersect1 and rtcOccluded1, so Embree calls these with one ray (N = 1).
 // Scene::intersect computes the surface interaction from the hit point; Ng is only a placeholder.
 struct SphereShape {

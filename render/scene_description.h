@@ -17,7 +17,7 @@
 #include "materials/media/medium.h"
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
-#include "render/cylinder_intersection.h"
+#include "core/cylinder_intersection.h"
 #include "render/sensors/sensor.h"
 #include "spectral/spectrum.h"
 

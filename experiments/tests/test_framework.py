@@ -440,6 +440,12 @@ class ProvenanceAndStatusTest(unittest.TestCase):
         status = run_all.status_markdown(["channel_count"])
         self.assertIn("## channel_count", status)
         self.assertIn("- status: ", status)
+        # A dirty tree is STALE whatever the scale; a clean one at scaled counts is SCALED.
+        self.assertTrue(run_all.result_status("channel_count", fields).startswith("STALE: not made from a clean commit"))
+        clean = dict(fields, git="commit abc (clean working tree)")
+        self.assertEqual(run_all.result_status("channel_count", clean),
+                         "SCALED: sample counts x 0.5 of the experiment's definition, from a clean commit")
+        self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""})), "current")
 
 
 if __name__ == "__main__":

@@ -13,8 +13,8 @@
 #include "core/mesh.h"
 #include "core/sampling.h"
 #include "materials/textures/texture.h"
-#include "render/cylinder_intersection.h"
-#include "render/sphere_intersection.h"
+#include "core/cylinder_intersection.h"
+#include "core/sphere_intersection.h"
 #include "spectral/spectrum.h"
 
 namespace iris {

@@ -3,7 +3,7 @@
 // `flip_normals` (default false: normals point outwards), placed by a `to_world` that may only
 // rotate, translate and scale uniformly. uv as Mitsuba 3: u = φ/2π around the axis, measured in the
 // frame Frame3f(axis) (Frame::fromNormal), v = the position along the axis / length. The scene
-// traces it as Embree user geometry (render/cylinder_intersection.h, render/scene.cpp); an area
+// traces it as Embree user geometry (core/cylinder_intersection.h, render/scene.cpp); an area
 // emitter on it is sampled uniformly by area.
 #include "core/frame.h"
 #include "render/shapes/shape.h"

@@ -1,6 +1,6 @@
 // The analytic sphere (Mitsuba "sphere"): center and radius, placed by a to_world that may only
 // rotate, translate and scale uniformly (a sphere stays a sphere). The scene traces it as Embree
-// user geometry with the analytic test of render/sphere_intersection.h (render/scene.cpp).
+// user geometry with the analytic test of core/sphere_intersection.h (render/scene.cpp).
 #include "render/shapes/shape.h"
 
 namespace iris {

@@ -1,5 +1,5 @@
 // The analytic open cylinder (Mitsuba "cylinder"; render/shapes/cylinder.cpp,
-// render/cylinder_intersection.h): roots against the wall and its ends (no caps), from far away
+// core/cylinder_intersection.h): roots against the wall and its ends (no caps), from far away
 // and at grazing angles; rays leaving a hit point do not find their own wall again; uv and
 // ∂p/∂u, ∂p/∂v as Mitsuba 3's parametrisation (checked against finite differences); the normal and
 // flip_normals; an emitting cylinder lights a floor as a finely tessellated mesh cylinder does
@@ -13,12 +13,13 @@
 #include "core/frame.h"
 #include "core/ray.h"
 #include "core/rng.h"
-#include "render/cylinder_intersection.h"
+#include "core/cylinder_intersection.h"
 #include "render/film.h"
 #include "render/loader/scene_loader.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "spectral/spectrum_factory.h"
+#include "tests/support/image_mean.h"
 #include "tests/support/render_test_scenes.h"
 
 namespace iris {
@@ -215,15 +216,9 @@ double floorRadiance(ShapeDescription light, const char* integrator, bool rgb, d
     opt.seed = 5;
     Film film(4, 4);
     Renderer(scene, opt).render(film);
-    double s = 0, s2 = 0;
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) {
-            const double v = film.pixel(x, y)[1];
-            s += v;
-            s2 += v * v;
-        }
-    *stderrOut = std::sqrt(std::max(0.0, s2 / 16 - (s / 16) * (s / 16)) / 16);
-    return s / 16;
+    const test::ImageMean m = test::imageMean(film, 1);
+    *stderrOut = m.stderr_;
+    return m.mean;
 }
 
 TEST(CylinderLight, LightsAFloorAsATessellatedCylinderDoes) {

@@ -1,4 +1,4 @@
-// The analytic sphere (render/sphere_intersection.h, traced as Embree user geometry, issue
+// The analytic sphere (core/sphere_intersection.h, traced as Embree user geometry, issue
 // 17 item 1): exact roots far from the sphere and at grazing angles, no self-intersection of rays
 // leaving a hit point (outwards: no hit; inwards: the far side, on the sphere and the ray), for small and
 // large radii and far from the origin, through the scene as the integrators use it.
@@ -12,7 +12,7 @@
 #include "core/sampling.h"
 #include "render/loader/scene_loader.h"
 #include "render/scene.h"
-#include "render/sphere_intersection.h"
+#include "core/sphere_intersection.h"
 
 namespace iris {
 namespace {

@@ -11,6 +11,7 @@
 #include "render/loader/scene_loader.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "tests/support/image_mean.h"
 
 namespace iris {
 namespace {
@@ -64,22 +65,9 @@ double floorY(const std::string& emitters, double* stderrOut) {
   </sensor>
   <shape type="rectangle"><transform name="to_world"><scale value="100"/></transform><bsdf type="diffuse"/></shape>
 )" + emitters + "</scene>";
-    const Scene scene(loadSceneFromString(xml, "."));
-    RenderOptions opt;
-    opt.rgbMode = true;
-    opt.spp = 8192;
-    opt.seed = 3;
-    Film film(4, 4);
-    Renderer(scene, opt).render(film);
-    double s = 0, s2 = 0;
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) {
-            const double v = film.pixel(x, y)[1];
-            s += v;
-            s2 += v * v;
-        }
-    *stderrOut = std::sqrt(std::max(0.0, s2 / 16 - (s / 16) * (s / 16)) / 16);
-    return s / 16;
+    const test::ImageMean m = test::imageMean(test::renderXml(xml, 4, 4, 8192, 3, true), 1);
+    *stderrOut = m.stderr_;
+    return m.mean;
 }
 
 std::string quad(float x, float y, const char* rgb) {

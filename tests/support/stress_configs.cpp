@@ -375,6 +375,28 @@ MaterialStress bumpmap() {
     });
 }
 
+MaterialStress blendbsdf() {
+    auto b = [](float w, PropertiesPtr first, PropertiesPtr second) {
+        return P("blendbsdf").f("weight", w).child(std::move(first)).child(std::move(second));
+    };
+    MaterialStress s = conserving({
+        {"w 0.5 diffuse + roughconductor a=1e-4", b(0.5f, P("diffuse").f("reflectance", 1.0f),
+                                                    P("roughconductor").f("alpha", 1e-4f).str("material", "Au"))},
+        {"w 0 diffuse + dielectric", b(0.0f, P("diffuse").f("reflectance", 1.0f), P("dielectric").f("int_ior", 1.5f))},
+        {"w 1 diffuse + dielectric", b(1.0f, P("diffuse").f("reflectance", 1.0f), P("dielectric").f("int_ior", 1.5f))},
+        {"w 0.3 roughdielectric a=1 + conductor", b(0.3f, P("roughdielectric").f("alpha", 1.0f),
+                                                     P("conductor").f("eta", 4.0f).f("k", 10.0f))},
+        {"0.6: w 0.5 diffuse + roughconductor a=0.3", P("blendbsdf").version(0).f("weight", 0.5f)
+                                                          .child(P("diffuse").f("reflectance", 1.0f))
+                                                          .child(P("roughconductor").f("alpha", 0.3f))},
+    });
+    s.consistencyKnownIssue =
+        "by design (Mitsuba 3 src/bsdfs/blendbsdf.cpp): the chosen nested sample keeps its own pdf while pdf(wo, wi) "
+        "is the blend's, so MIS weighs the strategies as Mitsuba 3 does (the weight f cos/pdf is the nested one); "
+        "version-0.6 blends are consistent";
+    return s;
+}
+
 MaterialStress mask() {
     auto m = [](float o, PropertiesPtr nested) { return P("mask").f("opacity", o).child(std::move(nested)); };
     MaterialStress s = conserving({
@@ -419,6 +441,7 @@ const std::map<std::string, Builder>& table() {
         {"normalmap", normalmap},
         {"bumpmap", bumpmap},
         {"mask", mask},
+        {"blendbsdf", blendbsdf},
         {"null", null},
     };
     return t;
