@@ -38,10 +38,8 @@ inline double intersectCylinder(const dvec3& o, const dvec3& d, const CylinderGe
     const dvec3 l = fp - (b / a) * dp;  // the ray's closest approach to the axis, perpendicular part
     const double disc = a * (r * r - glm::dot(l, l));
     if (!(disc >= 0)) return std::numeric_limits<double>::infinity();
-    const double q = -(b + std::copysign(std::sqrt(disc), b));
-    const double cc = glm::dot(fp, fp) - r * r;
-    double t0 = q / a, t1 = q != 0 ? cc / q : t0;
-    if (t0 > t1) std::swap(t0, t1);
+    double t0, t1;
+    stableQuadraticRoots(a, b, glm::dot(fp, fp) - r * r, disc, t0, t1);
     for (const double t : {t0, t1}) {
         const double z = fz + t * dz;
         if (t > tMin && t <= tMax && z >= 0 && z <= double(c.length)) return t;

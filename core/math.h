@@ -47,4 +47,15 @@ inline vec3 transformNormal(const mat4& m, const vec3& n) {
     return glm::transpose(glm::inverse(mat3(m))) * n;
 }
 
+/// The roots t0 ≤ t1 of a t² + 2 b t + c = 0 given its discriminant disc = b² − a c ≥ 0 (computed
+/// by the caller in a form that does not cancel), as q/a and c/q with q = −(b + sign(b)·√disc), which
+/// do not cancel when the roots differ greatly (Numerical Recipes §5.6; Haines et al. 2019, Ray
+/// Tracing Gems ch. 7, eq. 7.4).
+inline void stableQuadraticRoots(double a, double b, double c, double disc, double& t0, double& t1) {
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    t0 = q / a;
+    t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+}
+
 }  // namespace iris

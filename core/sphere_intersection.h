@@ -22,10 +22,8 @@ inline double intersectSphere(const dvec3& o, const dvec3& d, const dvec3& c, do
     const dvec3 l = f - (b / a) * d;  // f minus its projection on d: the ray's closest approach to c
     const double disc = a * (r * r - glm::dot(l, l));
     if (!(disc >= 0)) return std::numeric_limits<double>::infinity();
-    const double q = -(b + std::copysign(std::sqrt(disc), b));
-    const double cc = glm::dot(f, f) - r * r;
-    double t0 = q / a, t1 = q != 0 ? cc / q : t0;
-    if (t0 > t1) std::swap(t0, t1);
+    double t0, t1;
+    stableQuadraticRoots(a, b, glm::dot(f, f) - r * r, disc, t0, t1);
     if (t0 > tMin && t0 <= tMax) return t0;
     if (t1 > tMin && t1 <= tMax) return t1;
     return std::numeric_limits<double>::infinity();

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -33,12 +34,9 @@ BSDFInstance makeBlend(float weight, std::shared_ptr<Properties> first, std::sha
 std::shared_ptr<Properties> diffuse(float r) { return makeProps("diffuse", {{"reflectance", r}}); }
 
 std::string loadError(const std::string& body, const std::string& version = "3.0.0") {
-    try {
+    return test::errorOf([&] {
         loadSceneFromString("<scene version=\"" + version + "\">\n<shape type=\"sphere\">\n" + body + "</shape></scene>", ".");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    });
 }
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }

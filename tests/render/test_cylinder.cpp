@@ -19,6 +19,7 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "spectral/spectrum_factory.h"
+#include "tests/support/error_of.h"
 #include "tests/support/image_mean.h"
 #include "tests/support/render_test_scenes.h"
 
@@ -263,12 +264,7 @@ TEST(CylinderLight, LightsAFloorAsATessellatedCylinderDoes) {
 
 TEST(CylinderShape, WrongCylindersAreRefusedWithTheirLine) {
     const auto err = [](const std::string& body) {
-        try {
-            loadSceneFromString("<scene version=\"3.0.0\">\n" + body + "</scene>", ".");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
+        return test::errorOf([&] { loadSceneFromString("<scene version=\"3.0.0\">\n" + body + "</scene>", "."); });
     };
     const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
     const std::string r0 = err("<shape type=\"cylinder\">\n<float name=\"radius\" value=\"0\"/></shape>\n");

@@ -11,6 +11,7 @@
 #include "render/lights/light.h"
 #include "render/loader/scene_loader.h"
 #include "spectral/wavelengths.h"
+#include "tests/support/error_of.h"
 
 namespace iris {
 namespace {
@@ -80,12 +81,9 @@ TEST(SpotLight, TextureIsProjectedAlongTheAxis) {
 
 TEST(SpotLight, WrongSpotsAreRefusedWithTheirLine) {
     const auto err = [](const std::string& body) {
-        try {
+        return test::errorOf([&] {
             loadSceneFromString("<scene version=\"3.0.0\">\n<emitter type=\"spot\">\n" + body + "</emitter></scene>", ".");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
+        });
     };
     const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
     const std::string constant = err("<rgb name=\"texture\" value=\"0.5\"/>\n");
