@@ -119,7 +119,7 @@ class SlurmClusterTest(unittest.TestCase):
         self.assertTrue((pixels(out / "merged.exr") == pixels(unsplit(out, spp, args))).all())
 
     def test_3_experiment_submitted_to_slurm_equals_the_local_run(self):
-        exp = "thesis_reproduction"   # no time-limited renders: every image is deterministic
+        exp = "thesis_reproduction"   # every image deterministic but its time-limited equal-time renders
         local, cluster = WORK / "exp-local", WORK / "exp-slurm"
         common = ["--quick", "--threads", "1", "--build-dir", BUILD, "--force"]
         r = run([PY, REPO / "experiments" / f"{exp}.py", *common, "--out", local])
@@ -134,7 +134,11 @@ class SlurmClusterTest(unittest.TestCase):
         images = sorted(p.relative_to(local) for p in local.rglob("*.exr"))
         self.assertEqual(images, sorted(p.relative_to(cluster) for p in cluster.rglob("*.exr")))
         self.assertGreater(len(images), 0)
-        for rel in images:
+        # Bit for bit, except the renders stopped by --time-limit (the convergence study's
+        # "*_equal_time" sweep), whose sample counts depend on the machine's speed at that moment.
+        deterministic = [rel for rel in images if not any(part.endswith("_equal_time") for part in rel.parts)]
+        self.assertGreater(len(deterministic), len(images) // 2)
+        for rel in deterministic:
             self.assertTrue((pixels(local / rel) == pixels(cluster / rel)).all(), rel)
         # The report's results equal the local run's, except paths and measured times.
         def results(folder):
