@@ -49,6 +49,11 @@ const Properties::Entry* Properties::find(const std::string& name) const {
     return &it->second;
 }
 
+const PropertiesPtr* Properties::peekObject(const std::string& name) const {
+    const auto it = values_.find(name);
+    return it == values_.end() ? nullptr : std::get_if<PropertiesPtr>(&it->second.value);
+}
+
 const Properties::Entry& Properties::require(const std::string& name) const {
     const Entry* e = find(name);
     if (!e) failAt(loc_, tag_, " '", type_, "': missing required parameter '", name, "'");

@@ -107,6 +107,9 @@ public:
     };
     /// The entry of `name` (marked as used), or nullptr when absent.
     const Entry* find(const std::string& name) const;
+    /// The nested object stored under `name`, or nullptr when absent or not an object; unlike the
+    /// getters it neither marks the name as used nor records it as known (to look before reading).
+    const PropertiesPtr* peekObject(const std::string& name) const;
     /// True when `name` is present (recorded as a known parameter, not marked as used).
     bool present(const std::string& name) const;
     /// The entry of `name`, or "file:line: missing required parameter" when absent.

@@ -154,11 +154,9 @@ std::shared_ptr<Material> createMask(const Properties& p) {
         if (c->tag() != "bsdf") failAt(c->location(), "mask: nested object must be a bsdf, not a ", c->tag());
         nested.push_back(c);
     }
-    const Properties probe = p;  // looks at the named values without marking them as read
     for (const std::string& name : p.names()) {
         if (name == "opacity") continue;
-        const Properties::Entry* e = probe.find(name);
-        const PropertiesPtr* obj = e ? std::get_if<PropertiesPtr>(&e->value) : nullptr;
+        const PropertiesPtr* obj = p.peekObject(name);
         if (obj && (*obj)->tag() == "bsdf") nested.push_back(p.getObject(name));
     }
     if (nested.empty()) failAt(p.location(), "mask: no nested bsdf (Mitsuba: \"Child BSDF not specified\")");

@@ -48,14 +48,6 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
-/// True when an area emitter's `radiance` is a <texture> object (not a value or <spectrum>).
-bool radianceIsTexture(const Properties& emitter) {
-    const Properties probe = emitter;  // looks at the value without marking it as read
-    const Properties::Entry* e = probe.find("radiance");
-    const PropertiesPtr* obj = e ? std::get_if<PropertiesPtr>(&e->value) : nullptr;
-    return obj && (*obj)->tag() == "texture";
-}
-
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
     if (c.bsdf) {
         if (c.bsdf->tag() != "bsdf") failAt(p.locationOf("bsdf"), "parameter 'bsdf' must be a <bsdf>");
@@ -65,7 +57,8 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
         if (c.emitter->type() != "area")
             failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area')");
-        if (radianceIsTexture(*c.emitter))  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
+        const PropertiesPtr* radiance = c.emitter->peekObject("radiance");
+        if (radiance && (*radiance)->tag() == "texture")  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
             s.emissionTexture = getSpectrumTexture(*c.emitter, "radiance", SpectrumKind::Illuminant);
         else
             s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
