@@ -18,6 +18,15 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;   // 3 per triangle
 
     size_t triangleCount() const { return indices.size() / 3; }
+    /// The uvs of triangle `tri`'s corners: its vertices' uvs, or (0, 0), (1, 0), (1, 1) for a mesh
+    /// without uvs (Mitsuba's default triangle parametrisation).
+    void cornerUVs(size_t tri, vec2 uv[3]) const {
+        if (uvs.empty()) {
+            uv[0] = vec2(0, 0), uv[1] = vec2(1, 0), uv[2] = vec2(1, 1);
+            return;
+        }
+        for (int k = 0; k < 3; ++k) uv[k] = uvs[indices[3 * tri + k]];
+    }
     /// Apply an affine transform to positions and normals (normals by the inverse transpose).
     void transform(const mat4& m);
     /// Reverse the winding and negate normals.

@@ -258,12 +258,9 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
         // Barycentric interpolation of the hit point is more accurate than o + t d.
         si.p = b0 * p0 + b1 * p1 + b2 * p2;
         si.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-        vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
-        if (!m.uvs.empty()) {
-            uv0 = m.uvs[idx[0]];
-            uv1 = m.uvs[idx[1]];
-            uv2 = m.uvs[idx[2]];
-        }
+        vec2 uv[3];
+        m.cornerUVs(rh.hit.primID, uv);
+        const vec2 &uv0 = uv[0], &uv1 = uv[1], &uv2 = uv[2];
         si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
         // dp/du and dp/dv from the uv parameterisation (pbrt-v4 §6.5.3, the inverse of the 2×2 uv
         // matrix: p_i − p_2 = (u_i − u_2) ∂p/∂u + (v_i − v_2) ∂p/∂v); for a degenerate uv mapping

@@ -44,14 +44,9 @@ void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const {
     const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
     p = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
     n = glm::normalize(glm::cross(bb - a, c - a));
-    // The uv the scene gives a hit there (render/scene.cpp; (0,0), (1,0), (1,1) without uvs).
-    vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
-    if (!mesh_->uvs.empty()) {
-        uv0 = mesh_->uvs[idx[0]];
-        uv1 = mesh_->uvs[idx[1]];
-        uv2 = mesh_->uvs[idx[2]];
-    }
-    uv = b.x * uv0 + b.y * uv1 + (1 - b.x - b.y) * uv2;
+    vec2 corner[3];  // the uv the scene gives a hit there (render/scene.cpp)
+    mesh_->cornerUVs(size_t(tri), corner);
+    uv = b.x * corner[0] + b.y * corner[1] + (1 - b.x - b.y) * corner[2];
 }
 
 SampledSpectrum AreaLight::Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const {
