@@ -100,7 +100,6 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         if args.perturb:   # the same kind of edit with its neutral value (albedo=1, fov=0)
             ref_scene = perturb.perturbed_copy(original, perturb.neutral(args.perturb), workdir / f"{name}_neutral")
         ref_mean, ref_var, ref_n = render(render_exe, ref_scene, mode, 4 * spp, args.seed + 1000, workdir / f"{name}_{mode}_ref")
-        ref_sample_var = ref_var * ref_n
     if ref_mean.shape != mean.shape:
         return {**row, "verdict": f"fail: image size {mean.shape[1]}x{mean.shape[0]}, reference {ref_mean.shape[1]}x{ref_mean.shape[0]}",
                 "spp": spp}

@@ -124,17 +124,24 @@ def block_sums(img, k):
     return img[:by * k, :bx * k].reshape(by, k, bx, k, c).sum(axis=(1, 3))
 
 
+def block_means(m1, v1, m2, v2, k):
+    """Per k x k block: both means, both variances of the mean (Σ v / count²), the variance of their
+    difference floored as in welch_p, and the pixel count."""
+    count = block_sums(np.ones_like(m1), k)
+    bm1, bm2 = block_sums(m1, k) / count, block_sums(m2, k) / count
+    bv1, bv2 = block_sums(v1, k) / count ** 2, block_sums(v2, k) / count ** 2
+    v = np.maximum(bv1 + bv2, (RELATIVE_FLOOR * np.maximum(np.abs(bm1), np.abs(bm2))) ** 2 + 1e-30)
+    return bm1, bm2, bv1, bv2, v, count
+
+
 def block_welch_p(m1, v1, n1, m2, v2, n2, k):
     """Welch p-values of k x k block means; v, n per pixel (n broadcast to the image)."""
     n1 = np.broadcast_to(np.asarray(n1, float), m1.shape)
     n2 = np.broadcast_to(np.asarray(n2, float), m2.shape)
-    count = block_sums(np.ones_like(m1), k)
-    bm1, bm2 = block_sums(m1, k) / count, block_sums(m2, k) / count
-    bv1, bv2 = block_sums(v1, k) / count ** 2, block_sums(v2, k) / count ** 2
+    bm1, bm2, bv1, bv2, v, count = block_means(m1, v1, m2, v2, k)
     # Welch–Satterthwaite for a sum of independent terms: ν = (Σ v)² / Σ v²/(n−1), scaled like v.
     d1 = block_sums(v1 * v1 / np.maximum(n1 - 1, 1), k) / count ** 4
     d2 = block_sums(v2 * v2 / np.maximum(n2 - 1, 1), k) / count ** 4
-    v = np.maximum(bv1 + bv2, (RELATIVE_FLOOR * np.maximum(np.abs(bm1), np.abs(bm2))) ** 2 + 1e-30)
     with np.errstate(divide="ignore", invalid="ignore"):
         dof = np.where(d1 + d2 > 0, (bv1 + bv2) ** 2 / (d1 + d2), np.minimum(n1.min(), n2.min()) - 1.0)
     dof = np.clip(dof, 1.0, 1e7)
@@ -188,14 +195,8 @@ def mitsuba_z_test(mean, n, ref_mean, ref_sample_var, alpha=0.01, variance_floor
 def block_t_and_ratio(m1, v1, m2, v2, k, bx, by):
     """The t statistic and mean ratio m1/m2 per channel of one k x k block (k = 0: the whole
     image) at block column bx, row by; v are variances of the per-pixel means."""
-    if k == 0:
-        sl = (slice(None), slice(None))
-    else:
-        sl = (slice(by * k, (by + 1) * k), slice(bx * k, (bx + 1) * k))
-    count = m1[sl].shape[0] * m1[sl].shape[1]
-    a, b = m1[sl].mean(axis=(0, 1)), m2[sl].mean(axis=(0, 1))
-    v = (v1[sl].sum(axis=(0, 1)) + v2[sl].sum(axis=(0, 1))) / count ** 2
-    v = np.maximum(v, (RELATIVE_FLOOR * np.maximum(np.abs(a), np.abs(b))) ** 2 + 1e-30)
+    bm1, bm2, _, _, v, _ = block_means(m1, v1, m2, v2, k)
+    a, b, v = bm1[by, bx], bm2[by, bx], v[by, bx]
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(b != 0, a / b, np.nan)
     return (a - b) / np.sqrt(v), ratio
