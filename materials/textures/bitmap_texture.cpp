@@ -81,6 +81,8 @@ public:
         return s;
     }
 
+    ivec2 resolution() const override { return ivec2(params_.bitmap->width(), params_.bitmap->height()); }
+
 private:
     BitmapParams params_;
     UVTransform uv_;

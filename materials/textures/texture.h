@@ -43,6 +43,9 @@ public:
     virtual bool isConstant() const { return false; }
     /// For constant textures, the spectrum (else nullptr).
     virtual const Spectrum* constantSpectrum() const { return nullptr; }
+    /// Width and height in texels of an image texture, (1, 1) for others (Mitsuba 3's
+    /// Texture::resolution; the projector takes its aspect ratio from it).
+    virtual ivec2 resolution() const { return ivec2(1); }
 };
 
 using FloatTexturePtr = std::shared_ptr<const FloatTexture>;

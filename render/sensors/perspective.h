@@ -2,11 +2,10 @@
 // +y up; the field of view applies to the axis chosen by fov_axis.
 #pragma once
 
+#include "render/sensors/field_of_view.h"
 #include "render/sensors/sensor.h"
 
 namespace iris {
-
-enum class FovAxis { X, Y, Diagonal, Smaller, Larger };
 
 class PerspectiveSensor final : public Sensor {
 public:

@@ -41,7 +41,7 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     EXPECT_TRUE(has(hair, "<string>:3: unknown bsdf type 'hair'")) << hair;
     EXPECT_TRUE(has(hair, "roughconductor")) << hair;
     EXPECT_TRUE(has(loadError("<integrator type=\"bdpt\"/>\n"), "use 'path'"));
-    EXPECT_TRUE(has(loadError("<emitter type=\"projector\"/>\n"), "use 'spot'"));
+    EXPECT_TRUE(has(loadError("<emitter type=\"sun\"/>\n"), "use 'directional'"));
     // mask and null are supported (materials/mask.cpp): a mask without its nested bsdf is refused
     // as Mitsuba refuses it, at the mask's line.
     const std::string mask = loadError("<shape type=\"sphere\">\n<bsdf type=\"mask\"/></shape>\n");
