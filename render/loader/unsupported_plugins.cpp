@@ -2,6 +2,7 @@
 // errors (core/registry.h) end with this advice.
 #include "render/integrator.h"
 #include "render/lights/light.h"
+#include "render/sensors/sensor.h"
 #include "render/shapes/shape.h"
 #include "materials/material.h"
 
@@ -12,6 +13,12 @@ IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a r
 IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
 IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
+IRIS_HINT(IntegratorRegistry, "ptracer", "iris traces from the camera only: use 'path' (the same expected image)");
+IRIS_HINT(IntegratorRegistry, "aov", "iris writes no AOV images: the 'moment' wrapper gives per-pixel first and second moments");
+IRIS_HINT(SensorRegistry, "thinlens", "iris has no depth of field: use 'perspective' (a pinhole, everything in focus)");
+IRIS_HINT(ShapeRegistry, "sdfgrid", "iris has no signed-distance shapes: convert the grid to a mesh (obj or ply)");
+IRIS_HINT(ShapeRegistry, "bsplinecurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
+IRIS_HINT(ShapeRegistry, "linearcurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
 IRIS_HINT(ShapeRegistry, "shapegroup", "iris has no instancing: write the shapes out in place");
 IRIS_HINT(ShapeRegistry, "instance", "iris has no instancing: write the shapes out in place");
 

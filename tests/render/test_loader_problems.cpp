@@ -42,6 +42,10 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     EXPECT_TRUE(has(hair, "roughconductor")) << hair;
     EXPECT_TRUE(has(loadError("<integrator type=\"bdpt\"/>\n"), "use 'path'"));
     EXPECT_TRUE(has(loadError("<emitter type=\"sun\"/>\n"), "use 'directional'"));
+    const std::string ptracer = loadError("<integrator type=\"ptracer\"/>\n");
+    EXPECT_TRUE(has(ptracer, "<string>:2: unknown integrator type 'ptracer'") && has(ptracer, "use 'path'")) << ptracer;
+    EXPECT_TRUE(has(loadError("<shape type=\"sdfgrid\"/>\n"), "convert the grid to a mesh"));
+    EXPECT_TRUE(has(loadError("<sensor type=\"thinlens\"/>\n"), "use 'perspective'"));
     // mask and null are supported (materials/mask.cpp): a mask without its nested bsdf is refused
     // as Mitsuba refuses it, at the mask's line.
     const std::string mask = loadError("<shape type=\"sphere\">\n<bsdf type=\"mask\"/></shape>\n");
