@@ -2,7 +2,6 @@
 // errors (core/registry.h) end with this advice.
 #include "render/integrator.h"
 #include "render/lights/light.h"
-#include "render/shapes/shape.h"
 #include "materials/material.h"
 
 namespace iris {
@@ -13,7 +12,5 @@ IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a r
 IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
 IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
-IRIS_HINT(ShapeRegistry, "shapegroup", "iris has no instancing: write the shapes out in place");
-IRIS_HINT(ShapeRegistry, "instance", "iris has no instancing: write the shapes out in place");
 
 }  // namespace iris
