@@ -48,33 +48,40 @@ const char* kSceneHead = R"(<scene version="3.0.0">
     <film type="hdrfilm"><integer name="width" value="48"/><integer name="height" value="36"/><rfilter type="box"/></film>
   </sensor>
   <emitter type="constant"><rgb name="radiance" value="0.3, 0.35, 0.4"/></emitter>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/><scale value="8"/><translate y="-1.2"/></transform>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="8"/><translate y="-1.2"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.5, 0.4"/></bsdf></shape>
   <shape type="sphere"><point name="center" x="2" y="4" z="-3"/><float name="radius" value="0.8"/>
     <emitter type="area"><rgb name="radiance" value="6, 5, 4"/></emitter></shape>
 )";
 
-/// A group of a cube, a sphere and a cylinder placed by rotations, translations and uniform scales
-/// (an analytic shape keeps to those written in place), and a group of a textured cube and a
-/// rectangle placed with a non-uniform scale.
+/// Three groups: a cube and a sphere placed by translations and uniform scales; a cube and a
+/// cylinder placed by rotations too; a textured cube and a rectangle placed by a non-uniform scale
+/// and rotations. An analytic shape written in place keeps to rotations, translations and uniform
+/// scales, and iris's written-out sphere drops the rotation of its to_world (its uv and tangents
+/// follow the world axes, where an instanced sphere's follow the instance, as Mitsuba 3's do: the
+/// same image in distribution, not pixel for pixel), hence no rotated sphere here.
 std::vector<Group> testGroups() {
     const std::string checker = R"(<bsdf type="diffuse"><texture name="reflectance" type="checkerboard">
         <rgb name="color0" value="0.8, 0.2, 0.1"/><rgb name="color1" value="0.1, 0.3, 0.9"/>
         <transform name="to_uv"><scale x="4" y="3"/></transform></texture></bsdf></shape>)";
-    Group a{"trio",
-            {{"<shape type=\"cube\">", "<scale value=\"0.4\"/><rotate y=\"1\" angle=\"20\"/>",
-              "<bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0.2, 0.6, 0.3\"/></bsdf></shape>"},
-             {"<shape type=\"sphere\"><float name=\"radius\" value=\"0.35\"/>", "<translate x=\"0.2\" y=\"0.75\"/>",
-              "<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/><float name=\"alpha\" value=\"0.2\"/></bsdf></shape>"},
-             {"<shape type=\"cylinder\"><float name=\"radius\" value=\"0.15\"/>",
-              "<rotate x=\"1\" angle=\"-90\"/><translate x=\"-0.6\" y=\"-0.4\"/>", "<bsdf type=\"diffuse\"/></shape>"}},
-            {"<rotate y=\"1\" angle=\"30\"/><translate x=\"-1.4\"/>",
-             "<scale value=\"0.7\"/><rotate x=\"1\" angle=\"25\"/><translate x=\"1.3\" y=\"0.1\" z=\"0.4\"/>"}};
-    Group b{"slab",
-            {{"<shape type=\"cube\">", "<scale x=\"0.5\" y=\"0.3\" z=\"0.4\"/>", checker},
-             {"<shape type=\"rectangle\">", "<translate z=\"-0.45\"/>", "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>"}},
-            {"<scale x=\"1.8\" y=\"0.6\" z=\"0.9\"/><rotate z=\"1\" angle=\"15\"/><rotate y=\"1\" angle=\"-35\"/><translate y=\"-0.8\" z=\"1.2\"/>"}};
-    return {a, b};
+    const Member cube{"<shape type=\"cube\">", "<scale value=\"0.4\"/><rotate y=\"1\" angle=\"20\"/>",
+                      "<bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0.2, 0.6, 0.3\"/></bsdf></shape>"};
+    Group ball{"ball",
+               {cube,
+                {"<shape type=\"sphere\"><float name=\"radius\" value=\"0.35\"/>", "<translate x=\"0.2\" y=\"0.75\"/>",
+                 "<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/><float name=\"alpha\" value=\"0.2\"/></bsdf></shape>"}},
+               {"<translate x=\"-1.4\" y=\"0.3\"/>", "<scale value=\"0.7\"/><translate x=\"1.3\" y=\"0.1\" z=\"0.4\"/>"}};
+    Group tube{"tube",
+               {cube,
+                {"<shape type=\"cylinder\"><float name=\"radius\" value=\"0.15\"/>",
+                 "<rotate x=\"1\" angle=\"-90\"/><translate x=\"-0.6\" y=\"-0.4\"/>", "<bsdf type=\"diffuse\"/></shape>"}},
+               {"<rotate y=\"1\" angle=\"30\"/><translate x=\"-0.3\" y=\"0.6\" z=\"1.5\"/>",
+                "<scale value=\"0.6\"/><rotate x=\"1\" angle=\"25\"/><rotate z=\"1\" angle=\"-40\"/><translate x=\"2.2\" y=\"-0.5\" z=\"-0.5\"/>"}};
+    Group slab{"slab",
+               {{"<shape type=\"cube\">", "<scale x=\"0.5\" y=\"0.3\" z=\"0.4\"/>", checker},
+                {"<shape type=\"rectangle\">", "<scale value=\"0.4\"/><rotate y=\"1\" angle=\"60\"/><translate x=\"1.1\" z=\"-0.3\"/>", "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>"}},
+               {"<scale x=\"1.8\" y=\"0.6\" z=\"0.9\"/><rotate z=\"1\" angle=\"15\"/><rotate y=\"1\" angle=\"-35\"/><translate y=\"-0.8\" z=\"1.2\"/>"}};
+    return {ball, tube, slab};
 }
 
 std::string instancedScene(const std::vector<Group>& groups) {
@@ -120,7 +127,7 @@ TEST(Instancing, RendersAsTheShapesWrittenOutInPlace) {
     // the inverse of the instance's to_world, in float), the written-out one traces shapes whose
     // vertices, centres and radii were transformed at load: hit points, distances and barycentrics
     // differ by float rounding (~1e-7 relative), so pixel values may differ by about that much
-    // (here: 90 % of the pixels are bit-identical, all but 0.5 % agree to 1e-6 and all to 1e-4).
+    // (here: 88 % of the pixels are bit-identical, all but 0.5 % agree to 1e-6 and all to 1e-4).
     // A path whose decision sits on a boundary (a silhouette within rounding of the ray, a Russian
     // roulette threshold) could take another turn with other random numbers, so the test allows
     // 1 % of the pixels beyond 1e-4 relative and asks for the image means within 1e-3.
@@ -138,7 +145,7 @@ TEST(Instancing, RendersAsTheShapesWrittenOutInPlace) {
         }
         // The test can fail: an instance placed slightly elsewhere changes many pixels.
         std::vector<Group> moved = groups;
-        moved[1].placements[0] += "<translate x=\"0.05\"/>";
+        moved[2].placements[0] += "<translate x=\"0.05\"/>";
         const Film c = test::renderXml(instancedScene(moved), 48, 36, 16, 11, rgb);
         EXPECT_GT(differingFraction(c, b, 1e-4), 0.05);
     }
