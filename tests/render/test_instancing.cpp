@@ -198,6 +198,41 @@ TEST(Instancing, AMitsuba06SceneLoadsItsInstances) {
     EXPECT_EQ(s.bounds().center, vec3(3, 0, 0));
 }
 
+TEST(Instancing, EmptyGroupsAndInstancesOfThemTraceNothing) {
+    // An empty group, and a group whose only mesh has no triangles, placed twice: no geometry, no
+    // bounds, no hit (Embree instances of empty scenes).
+    auto empty = std::make_shared<ShapeGroupDescription>();
+    auto hollow = std::make_shared<ShapeGroupDescription>();
+    ShapeDescription none;
+    none.mesh = std::make_shared<TriangleMesh>();
+    none.name = "empty mesh";
+    hollow->shapes.push_back(none);
+    SceneDescription d;
+    for (const auto& g : {empty, hollow})
+        for (int k = 0; k < 2; ++k) d.instances.push_back(InstanceDescription{g, glm::translate(mat4(1.0f), vec3(float(k))), "i"});
+    const Scene s(std::move(d));
+    EXPECT_FALSE(s.intersect(Ray(vec3(0, 0, -4), vec3(0, 0, 1))));
+    EXPECT_FALSE(s.occluded(Ray(vec3(0, 0, -4), vec3(0, 0, 1))));
+    EXPECT_EQ(s.triangleCount(), 0u);
+}
+
+TEST(Instancing, AnInstancedMediumBoundaryIsFoundByItsShape) {
+    // volpath asks Scene::shape(si.shapeIndex) for the media of the surface it hits: a group's
+    // shape is found through any of its instances.
+    const Scene s(loadSceneFromString(R"(<scene version="3.0.0"><integrator type="volpath"/>
+  <shape type="shapegroup" id="g"><shape type="sphere"><bsdf type="null"/>
+    <medium type="homogeneous" name="interior"><rgb name="albedo" value="0.5"/><float name="scale" value="2"/></medium></shape></shape>
+  <shape type="cube"/>
+  <shape type="instance"><ref id="g"/><transform name="to_world"><translate x="5"/></transform></shape>
+  <shape type="instance"><ref id="g"/><transform name="to_world"><translate x="-5"/></transform></shape>
+</scene>)", "."));
+    for (const float x : {5.0f, -5.0f, 0.0f}) {
+        const auto hit = s.intersect(Ray(vec3(x, 0, -5), vec3(0, 0, 1)));
+        ASSERT_TRUE(hit);
+        EXPECT_EQ(bool(s.shape(hit->shapeIndex).interior), x != 0.0f) << x;
+    }
+}
+
 // ---------------------------------------------------------------- the transformed interaction
 
 /// Non-uniform scale, rotation and translation.
