@@ -16,10 +16,13 @@ std::vector<PropertiesPtr> nestedObjects(const Properties& p) {
     return all;
 }
 
+/// The group's id, or "shapegroup" for one nested in an instance without an id (for messages).
+std::string groupName(const Properties& group) { return !group.id().empty() ? group.id() : "shapegroup"; }
+
 /// Mitsuba 3's ShapeGroup constructor refuses nested instancing, nested groups and emitters
 /// ("Nested instancing is not permitted", "Instancing of emitters is not supported").
 void checkGroupMember(const Properties& group, const Properties& member) {
-    const std::string where = strCat(" (in shapegroup '", group.id(), "' at ", group.location().str(), ")");
+    const std::string where = strCat(" (in shapegroup '", groupName(group), "' at ", group.location().str(), ")");
     if (member.tag() != "shape")
         failAt(member.location(), "a shapegroup holds only shapes, not a <", member.tag(), ">", where);
     if (member.type() == "shapegroup")
@@ -36,7 +39,7 @@ void checkNoEmitter(const Properties& member, const ShapeDescription& s, const s
 
 std::shared_ptr<ShapeGroupDescription> buildGroup(const Properties& p) {
     auto g = std::make_shared<ShapeGroupDescription>();
-    g->name = !p.id().empty() ? p.id() : "shapegroup";
+    g->name = groupName(p);
     for (const PropertiesPtr& member : nestedObjects(p)) {
         checkGroupMember(p, *member);
         ShapeDescription s = loadShape(*member);

@@ -172,6 +172,11 @@ TEST(Instancing, AShapeGroupAloneRendersNothing) {
     // One instance makes it visible.
     const Scene one(loadSceneFromString(head + group + "<shape type=\"instance\"><ref id=\"g\"/></shape></scene>", "."));
     EXPECT_TRUE(one.intersect(Ray(vec3(0, 0, -4), vec3(0, 0, 1))));
+    // So does a group nested (without an id) in its instance, as Mitsuba 3 allows.
+    const Scene nested(loadSceneFromString(head + "<shape type=\"instance\"><shape type=\"shapegroup\"><shape type=\"sphere\"/></shape>"
+                                                  "<transform name=\"to_world\"><translate y=\"3\"/></transform></shape></scene>", "."));
+    EXPECT_FALSE(nested.intersect(Ray(vec3(0, 0, -4), vec3(0, 0, 1))));
+    EXPECT_TRUE(nested.intersect(Ray(vec3(0, 3, -4), vec3(0, 0, 1))));
 }
 
 TEST(Instancing, AMitsuba06SceneLoadsItsInstances) {
