@@ -52,7 +52,7 @@ struct PathState {
 /// The medium on the far side of surface `si` for a ray leaving it along d (Mitsuba 3
 /// SurfaceInteraction::target_medium), or `current` when the shape is no medium transition.
 const Medium* mediumAfter(const Scene& scene, const SurfaceInteraction& si, const vec3& d, const Medium* current) {
-    const ShapeDescription& s = scene.description().shapes[si.shapeIndex];
+    const ShapeDescription& s = scene.shape(si.shapeIndex);
     if (!s.interior && !s.exterior) return current;
     return glm::dot(d, si.ng) > 0 ? s.exterior.get() : s.interior.get();
 }

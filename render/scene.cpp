@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <map>
+
 #include "core/error.h"
 #include "render/lights/area_light.h"
 #include "core/properties.h"
@@ -9,6 +11,7 @@
 #include "materials/material.h"
 #include "core/cylinder_intersection.h"
 #include "core/sphere_intersection.h"
+#include "render/instance_transform.h"
 
 namespace iris {
 
@@ -116,7 +119,61 @@ void checkDevice(RTCDevice device, const char* what) {
     const RTCError err = rtcGetDeviceError(device);
     if (err != RTC_ERROR_NONE) fail("Embree error ", int(err), " while ", what);
 }
+
+void growBounds(vec3& lo, vec3& hi, const vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+}
+
+/// The Embree geometry of one shape in its own space (world space for top-level shapes, the group's
+/// space for shapes of a shape group), its bounds added to [lo, hi] and its triangles to
+/// `triangles`; nullptr for a mesh without triangles.
+RTCGeometry shapeGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo, vec3& hi, size_t& triangles) {
+    if (s.type == ShapeDescription::Type::Mesh) {
+        if (!s.mesh) fail("shape '", s.name, "' has no mesh");
+        const TriangleMesh& m = *s.mesh;
+        m.validate();
+        if (m.triangleCount() == 0) return nullptr;
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0, sizeof(vec3),
+                                   m.positions.size());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0, 3 * sizeof(uint32_t),
+                                   m.triangleCount());
+        triangles += m.triangleCount();
+        for (const vec3& p : m.positions) growBounds(lo, hi, p);
+        return geom;
+    }
+    if (s.type == ShapeDescription::Type::Sphere) {
+        if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
+        return userGeometry<SphereShape>(device, s, lo, hi);
+    }
+    const CylinderGeometry& c = s.cylinder;
+    if (!(s.radius > 0) || !(c.length > 0) || !isFinite(c.p0) || !isFinite(c.axis))
+        fail("cylinder '", s.name, "' has an invalid radius, length or position");
+    return userGeometry<CylinderShape>(device, s, lo, hi);
+}
+
+/// The area light of an emitting top-level shape.
+LightPtr areaLightOf(const ShapeDescription& s) {
+    const SpectrumTexturePtr radiance =
+        s.emissionTexture ? s.emissionTexture : std::make_shared<ConstantSpectrumTexture>(s.emission);
+    if (s.type == ShapeDescription::Type::Mesh) return std::make_shared<AreaLight>(s.mesh.get(), radiance);
+    if (s.type == ShapeDescription::Type::Sphere) return std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, radiance);
+    return std::make_shared<AreaLight>(s.cylinder, s.radius, s.flipNormals, radiance);
+}
+
+void attachGeometry(RTCScene scene, RTCGeometry geom, unsigned id) {
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, id);
+    rtcReleaseGeometry(geom);
+}
 }  // namespace
+
+/// A placed shape group: its transform and where its shapes start in shapes_.
+struct Scene::InstanceData {
+    InstanceTransform transform;
+    size_t firstShape;
+};
 
 Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
     RTCDevice device = rtcNewDevice("verbose=0");
@@ -133,49 +190,19 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
     }
 
     vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-    shapes_.resize(desc_.shapes.size());
     for (size_t i = 0; i < desc_.shapes.size(); ++i) {
         const ShapeDescription& s = desc_.shapes[i];
-        ShapeData& sd = shapes_[i];
-        sd.desc = &s;
-        sd.material = s.material ? s.material.get() : defaultMaterial_.get();
-        const bool emits = s.emission || s.emissionTexture;
-        const SpectrumTexturePtr radiance =
-            s.emissionTexture ? s.emissionTexture : s.emission ? std::make_shared<ConstantSpectrumTexture>(s.emission) : nullptr;
-        RTCGeometry geom;
-        if (s.type == ShapeDescription::Type::Mesh) {
-            if (!s.mesh) fail("shape '", s.name, "' has no mesh");
-            const TriangleMesh& m = *s.mesh;
-            m.validate();
-            if (m.triangleCount() == 0) continue;
-            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                                       sizeof(vec3), m.positions.size());
-            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                                       3 * sizeof(uint32_t), m.triangleCount());
-            triangles_ += m.triangleCount();
-            for (const vec3& p : m.positions) {
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
-            if (emits) lights_.push_back(std::make_shared<AreaLight>(s.mesh.get(), radiance));
-        } else if (s.type == ShapeDescription::Type::Sphere) {
-            if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
-            geom = userGeometry<SphereShape>(device, s, lo, hi);
-            if (emits) lights_.push_back(std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, radiance));
-        } else {
-            const CylinderGeometry& c = s.cylinder;
-            if (!(s.radius > 0) || !(c.length > 0) || !isFinite(c.p0) || !isFinite(c.axis))
-                fail("cylinder '", s.name, "' has an invalid radius, length or position");
-            geom = userGeometry<CylinderShape>(device, s, lo, hi);
-            if (emits) lights_.push_back(std::make_shared<AreaLight>(c, s.radius, s.flipNormals, radiance));
+        addShapeData(s);
+        RTCGeometry geom = shapeGeometry(device, s, lo, hi, triangles_);
+        if (!geom) continue;
+        if (s.emission || s.emissionTexture) {
+            lights_.push_back(areaLightOf(s));
+            shapes_[i].areaLight = lights_.back().get();
         }
-        if (emits) sd.areaLight = lights_.back().get();
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(scene, geom, unsigned(i));
-        rtcReleaseGeometry(geom);
+        attachGeometry(scene, geom, unsigned(i));
         checkDevice(device, "building the scene geometry");
     }
+    addInstances(lo, hi);
     rtcCommitScene(scene);
     checkDevice(device, "building the acceleration structure");
 
@@ -190,8 +217,62 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
     }
 }
 
+void Scene::addShapeData(const ShapeDescription& s) {
+    ShapeData sd;
+    sd.desc = &s;
+    sd.material = s.material ? s.material.get() : defaultMaterial_.get();
+    shapes_.push_back(sd);
+}
+
+/// Each shape group once as its own Embree scene (its shapes appended to shapes_), each instance as
+/// an Embree instance of it (Mitsuba 3 does the same: src/render/shapegroup.cpp, embree_geometry)
+/// with the geometry ID shapes + its index, so that a hit's instID finds its InstanceData.
+void Scene::addInstances(vec3& lo, vec3& hi) {
+    RTCDevice device = static_cast<RTCDevice>(device_);
+    struct Group {
+        RTCScene scene;
+        size_t firstShape;
+        vec3 lo, hi;
+    };
+    std::map<const ShapeGroupDescription*, Group> groups;
+    firstInstanceID_ = unsigned(desc_.shapes.size());
+    for (size_t k = 0; k < desc_.instances.size(); ++k) {
+        const InstanceDescription& inst = desc_.instances[k];
+        auto [it, added] = groups.try_emplace(inst.group.get());
+        Group& g = it->second;
+        if (added) {
+            g.scene = rtcNewScene(device);
+            rtcSetSceneBuildQuality(g.scene, RTC_BUILD_QUALITY_HIGH);
+            groupScenes_.push_back(g.scene);
+            g.firstShape = shapes_.size();
+            g.lo = vec3(std::numeric_limits<float>::infinity());
+            g.hi = vec3(-std::numeric_limits<float>::infinity());
+            for (size_t j = 0; j < inst.group->shapes.size(); ++j) {
+                addShapeData(inst.group->shapes[j]);
+                RTCGeometry geom = shapeGeometry(device, inst.group->shapes[j], g.lo, g.hi, triangles_);
+                if (geom) attachGeometry(g.scene, geom, unsigned(j));
+                checkDevice(device, "building the geometry of a shape group");
+            }
+            rtcCommitScene(g.scene);
+            checkDevice(device, "building the acceleration structure of a shape group");
+        }
+        instances_.push_back(InstanceData{InstanceTransform(inst.toWorld), g.firstShape});
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, g.scene);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.toWorld[0][0]);  // glm is column-major
+        attachGeometry(static_cast<RTCScene>(scene_), geom, firstInstanceID_ + unsigned(k));
+        checkDevice(device, ("placing " + inst.name).c_str());
+        if (g.lo.x <= g.hi.x)
+            for (int c = 0; c < 8; ++c)
+                growBounds(lo, hi, transformPoint(inst.toWorld, vec3(c & 1 ? g.hi.x : g.lo.x, c & 2 ? g.hi.y : g.lo.y, c & 4 ? g.hi.z : g.lo.z)));
+    }
+}
+
+const ShapeDescription& Scene::shape(int shapeIndex) const { return *shapes_.at(size_t(shapeIndex)).desc; }
+
 Scene::~Scene() {
     if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
+    for (void* g : groupScenes_) rtcReleaseScene(static_cast<RTCScene>(g));
     if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
 }
 
@@ -219,6 +300,66 @@ void cylinderInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     if (s.flipNormals) n = -n;
     si.ng = si.ns = n;
 }
+
+/// A triangle's interaction at barycentrics (b1, b2) of triangle `prim`.
+void meshInteraction(const ShapeDescription& s, unsigned prim, float b1, float b2, SurfaceInteraction& si) {
+    const TriangleMesh& m = *s.mesh;
+    const uint32_t* idx = &m.indices[3 * prim];
+    const float b0 = 1.0f - b1 - b2;
+    const vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
+    // Barycentric interpolation of the hit point is more accurate than o + t d.
+    si.p = b0 * p0 + b1 * p1 + b2 * p2;
+    si.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    vec2 uv[3];
+    m.cornerUVs(prim, uv);
+    const vec2 &uv0 = uv[0], &uv1 = uv[1], &uv2 = uv[2];
+    si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+    // dp/du and dp/dv from the uv parameterisation (pbrt-v4 §6.5.3, the inverse of the 2×2 uv
+    // matrix: p_i − p_2 = (u_i − u_2) ∂p/∂u + (v_i − v_2) ∂p/∂v); for a degenerate uv mapping
+    // an edge and the tangent perpendicular to it.
+    const vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    const vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    if (std::abs(det) > 1e-12f) {
+        si.dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+        si.dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
+    } else {
+        si.dpdu = p1 - p0;
+        si.dpdv = glm::cross(si.ng, si.dpdu);
+    }
+    if (!m.normals.empty() && !s.faceNormals) {
+        vec3 n = b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]];
+        const float len = glm::length(n);
+        si.ns = len > 0 ? n / len : si.ng;
+    } else {
+        si.ns = si.ng;
+    }
+}
+
+/// The sphere's interaction at the hit point si.p.
+void sphereInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
+    vec3 n = glm::normalize(si.p - s.center);
+    // Re-project onto the sphere to reduce the hit point's error.
+    si.p = s.center + s.radius * n;
+    if (s.flipNormals) n = -n;
+    si.ng = si.ns = n;
+    const vec3 local = (si.p - s.center) / s.radius;
+    si.uv = sphereUV(local);
+    // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
+    // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
+    // position (x, y, z) = (sin θ cos φ, sin θ sin φ, cos θ). At the poles (sin θ = 0) both
+    // degenerate; a tangent pair perpendicular to the axis is used instead.
+    // Stored divided by dpScale = 2πr (see SurfaceInteraction).
+    si.dpScale = 2 * kPi * s.radius;
+    const float rd = std::sqrt(local.x * local.x + local.y * local.y);
+    if (rd > 1e-6f) {
+        si.dpdu = vec3(-local.y, local.x, 0.0f);
+        si.dpdv = 0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd);
+    } else {
+        si.dpdu = vec3(1, 0, 0);
+        si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
+    }
+}
 }  // namespace
 
 std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
@@ -241,72 +382,35 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
     rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
-    const ShapeData& sd = shapes_[rh.hit.geomID];
+    const unsigned inst = rh.hit.instID[0];
+    if (inst == RTC_INVALID_GEOMETRY_ID) return hitInteraction(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, ray, rh.ray.tfar);
+    // A hit inside an instance: the shape's interaction in the group's space, then carried to world.
+    const InstanceData& in = instances_[inst - firstInstanceID_];
+    SurfaceInteraction si = hitInteraction(in.firstShape + rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v,
+                                           in.transform.toObjectRay(ray), rh.ray.tfar);
+    in.transform.toWorldInteraction(si);
+    si.wo = -glm::normalize(ray.d);
+    return si;
+}
+
+/// The interaction at a hit of shapes_[index] (primitive prim, barycentrics (b1, b2), distance t
+/// along `ray`), in the shape's own space.
+SurfaceInteraction Scene::hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t) const {
+    const ShapeData& sd = shapes_[index];
     const ShapeDescription& s = *sd.desc;
     SurfaceInteraction si;
-    si.t = rh.ray.tfar;
+    si.t = t;
     si.p = ray.at(si.t);
     si.wo = -glm::normalize(ray.d);
-    si.shapeIndex = int(rh.hit.geomID);
+    si.shapeIndex = int(index);
     si.material = sd.material;
     si.areaLight = sd.areaLight;
-    if (s.type == ShapeDescription::Type::Mesh) {
-        const TriangleMesh& m = *s.mesh;
-        const uint32_t* idx = &m.indices[3 * rh.hit.primID];
-        const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
-        const vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
-        // Barycentric interpolation of the hit point is more accurate than o + t d.
-        si.p = b0 * p0 + b1 * p1 + b2 * p2;
-        si.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-        vec2 uv[3];
-        m.cornerUVs(rh.hit.primID, uv);
-        const vec2 &uv0 = uv[0], &uv1 = uv[1], &uv2 = uv[2];
-        si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
-        // dp/du and dp/dv from the uv parameterisation (pbrt-v4 §6.5.3, the inverse of the 2×2 uv
-        // matrix: p_i − p_2 = (u_i − u_2) ∂p/∂u + (v_i − v_2) ∂p/∂v); for a degenerate uv mapping
-        // an edge and the tangent perpendicular to it.
-        const vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-        const vec3 dp02 = p0 - p2, dp12 = p1 - p2;
-        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-        if (std::abs(det) > 1e-12f) {
-            si.dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
-            si.dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
-        } else {
-            si.dpdu = p1 - p0;
-            si.dpdv = glm::cross(si.ng, si.dpdu);
-        }
-        if (!m.normals.empty() && !s.faceNormals) {
-            vec3 n = b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]];
-            const float len = glm::length(n);
-            si.ns = len > 0 ? n / len : si.ng;
-        } else {
-            si.ns = si.ng;
-        }
-    } else if (s.type == ShapeDescription::Type::Cylinder) {
+    if (s.type == ShapeDescription::Type::Mesh)
+        meshInteraction(s, prim, b1, b2, si);
+    else if (s.type == ShapeDescription::Type::Cylinder)
         cylinderInteraction(s, si);
-    } else {
-        vec3 n = glm::normalize(si.p - s.center);
-        // Re-project onto the sphere to reduce the hit point's error.
-        si.p = s.center + s.radius * n;
-        if (s.flipNormals) n = -n;
-        si.ng = si.ns = n;
-        const vec3 local = (si.p - s.center) / s.radius;
-        si.uv = sphereUV(local);
-        // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
-        // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
-        // position (x, y, z) = (sin θ cos φ, sin θ sin φ, cos θ). At the poles (sin θ = 0) both
-        // degenerate; a tangent pair perpendicular to the axis is used instead.
-        // Stored divided by dpScale = 2πr (see SurfaceInteraction).
-        si.dpScale = 2 * kPi * s.radius;
-        const float rd = std::sqrt(local.x * local.x + local.y * local.y);
-        if (rd > 1e-6f) {
-            si.dpdu = vec3(-local.y, local.x, 0.0f);
-            si.dpdv = 0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd);
-        } else {
-            si.dpdu = vec3(1, 0, 0);
-            si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
-        }
-    }
+    else
+        sphereInteraction(s, si);
     return si;
 }
 

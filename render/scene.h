@@ -28,6 +28,9 @@ public:
     bool visibleInfinite(const SurfaceInteraction& from, const vec3& dir) const;
 
     const SceneDescription& description() const { return desc_; }
+    /// The shape of a SurfaceInteraction's shapeIndex: a top-level shape or a shape of a group
+    /// (then shared by all the group's instances).
+    const ShapeDescription& shape(int shapeIndex) const;
     const std::vector<LightPtr>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infinite_; }
     const SceneBounds& bounds() const { return bounds_; }
@@ -37,8 +40,16 @@ public:
 
 private:
     struct ShapeData;
+    struct InstanceData;
+    void addShapeData(const ShapeDescription& s);
+    void addInstances(vec3& lo, vec3& hi);
+    SurfaceInteraction hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t) const;
+
     SceneDescription desc_;
-    std::vector<ShapeData> shapes_;
+    std::vector<ShapeData> shapes_;         // the top-level shapes (index = Embree geometry ID), then each group's
+    std::vector<InstanceData> instances_;   // Embree geometry ID firstInstanceID_ + index
+    std::vector<void*> groupScenes_;        // RTCScene of each shape group
+    unsigned firstInstanceID_ = 0;
     std::vector<LightPtr> lights_;          // all lights incl. area lights
     std::vector<const Light*> infinite_;
     SceneBounds bounds_;

@@ -27,8 +27,9 @@ class Light;
 
 struct ShapeDescription {
     enum class Type { Mesh, Sphere, Cylinder } type = Type::Mesh;
-    std::shared_ptr<TriangleMesh> mesh;  // Mesh: already in world space
-    vec3 center{0.0f};                   // Sphere (world space)
+    // World space for a top-level shape, the group's space for a shape of a ShapeGroupDescription.
+    std::shared_ptr<TriangleMesh> mesh;  // Mesh: already transformed by the shape's to_world
+    vec3 center{0.0f};                   // Sphere
     float radius = 1.0f;                 // Sphere, Cylinder
     CylinderGeometry cylinder;           // Cylinder (world space)
     bool flipNormals = false;            // Sphere, Cylinder: normals point inwards
@@ -40,6 +41,22 @@ struct ShapeDescription {
     // vacuum / "no change"; a shape with either is a medium transition (integrators/volpath.cpp).
     MediumPtr interior, exterior;
     std::string name;                    // for messages
+};
+
+/// A Mitsuba `shapegroup` (Mitsuba 3, src/render/shapegroup.cpp): shapes in the group's own space
+/// (meshes already transformed by their own to_world into it) that are not rendered themselves,
+/// only through instances. Holds no emitters, groups or instances (Mitsuba 3 refuses them).
+struct ShapeGroupDescription {
+    std::string name;  // the group's id, for messages
+    std::vector<ShapeDescription> shapes;
+};
+
+/// A Mitsuba `instance` (Mitsuba 3, src/shapes/instance.cpp): a shape group placed in the world by
+/// `toWorld`, which composes with the group's shapes' own to_world (world = toWorld · shape to_world).
+struct InstanceDescription {
+    std::shared_ptr<const ShapeGroupDescription> group;  // shared by every instance of one id
+    mat4 toWorld{1.0f};
+    std::string name;  // for messages
 };
 
 /// The sensor with its film: image size, reconstruction filter, and the sensor plugin bound to
@@ -58,6 +75,7 @@ using IntegratorPtr = std::shared_ptr<const Integrator>;
 struct SceneDescription {
     std::string sourceFile;  // for messages and metadata
     std::vector<ShapeDescription> shapes;
+    std::vector<InstanceDescription> instances;  // placed shape groups (Scene: Embree instances)
     std::vector<std::shared_ptr<Light>> lights;  // non-area lights (point, spot, env, ...)
     CameraDescription camera;
     IntegratorPtr integrator;  // render/integrator.h; the loader gives "path" when the scene names none
@@ -72,6 +90,9 @@ struct SceneDescription {
         if (camera.medium) return true;
         for (const ShapeDescription& s : shapes)
             if (s.interior || s.exterior) return true;
+        for (const InstanceDescription& i : instances)
+            for (const ShapeDescription& s : i.group->shapes)
+                if (s.interior || s.exterior) return true;
         return false;
     }
 };

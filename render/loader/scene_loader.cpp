@@ -6,6 +6,7 @@
 #include "render/films/film_description.h"
 #include "render/integrator.h"
 #include "render/lights/light.h"
+#include "render/loader/instance_loader.h"
 #include "render/loader/shape_loader.h"
 #include "render/samplers/sampler_description.h"
 #include "render/sensors/sensor.h"
@@ -72,7 +73,11 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
 
 void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {
     const std::string& tag = p.tag();
-    if (tag == "shape") {
+    if (tag == "shape" && p.type() == "shapegroup") {
+        loadShapeGroup(p);  // created now so that its errors show even when no instance uses it; not rendered itself
+    } else if (tag == "shape" && p.type() == "instance") {
+        scene.instances.push_back(loadInstance(p));
+    } else if (tag == "shape") {
         scene.shapes.push_back(loadShape(p));
     } else if (tag == "bsdf") {
         materialFor(p);  // created now so that its errors show even when unused
@@ -104,6 +109,8 @@ void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, 
 void checkMediaHaveBoundaries(const ParsedScene& parsed, const SceneDescription& scene, std::vector<std::string>& problems) {
     std::vector<const void*> used{scene.camera.medium.get()};
     for (const ShapeDescription& s : scene.shapes) used.insert(used.end(), {s.interior.get(), s.exterior.get()});
+    for (const InstanceDescription& i : scene.instances)
+        for (const ShapeDescription& s : i.group->shapes) used.insert(used.end(), {s.interior.get(), s.exterior.get()});
     for (const PropertiesPtr& obj : parsed.objects)
         if (obj->tag() == "medium" && obj->instance && std::find(used.begin(), used.end(), obj->instance.get()) == used.end())
             problems.push_back(strCat(obj->location().str(), ": <medium id=\"", obj->id(), "\"> has no boundary: no shape refers to it as "
@@ -122,7 +129,8 @@ SceneDescription build(ParsedScene parsed) {
         try {
             load();
         } catch (const Error& e) {
-            problems.emplace_back(e.what());
+            // A shapegroup's problem shows once, not again for each instance that uses it.
+            if (std::find(problems.begin(), problems.end(), e.what()) == problems.end()) problems.emplace_back(e.what());
         }
     };
     for (const PropertiesPtr& obj : parsed.objects)

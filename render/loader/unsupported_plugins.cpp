@@ -19,7 +19,5 @@ IRIS_HINT(SensorRegistry, "thinlens", "iris has no depth of field: use 'perspect
 IRIS_HINT(ShapeRegistry, "sdfgrid", "iris has no signed-distance shapes: convert the grid to a mesh (obj or ply)");
 IRIS_HINT(ShapeRegistry, "bsplinecurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
 IRIS_HINT(ShapeRegistry, "linearcurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
-IRIS_HINT(ShapeRegistry, "shapegroup", "iris has no instancing: write the shapes out in place");
-IRIS_HINT(ShapeRegistry, "instance", "iris has no instancing: write the shapes out in place");
 
 }  // namespace iris

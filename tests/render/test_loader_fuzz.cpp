@@ -71,6 +71,9 @@ const char* kSeedScene = R"(<scene version="3.0.0">
         <emitter type="area"><spectrum name="radiance" value="400:1, 500:2, 700:3"/></emitter></shape>
     <shape type="cube"/>
     <shape type="disk"><transform name="to_world"><rotate value="1 0 0" angle="90"/></transform></shape>
+    <shape type="shapegroup" id="grp"><shape type="cube"><ref id="white"/></shape>
+        <shape type="sphere"><float name="radius" value="0.3"/></shape></shape>
+    <shape type="instance"><ref id="grp"/><transform name="to_world"><scale x="2" y="0.5" z="1"/></transform></shape>
 </scene>
 )";
 
@@ -87,7 +90,8 @@ const char* kQuadPly =
 
 const char* kTokens[] = {"",    "-1",   "0",     "1e40", "nan",  "inf", "$spp", "$nope", "abc", "99999999999",
                          "1 2", "#zz",  "400:1", ":",    "true", "3.0.0", "0.6.0", "part.xml", "tri.obj",
-                         "quad.ply", "-0", "1,2,3,4", "white", "lamp", "checks", "<", "&amp;", "65536"};
+                         "quad.ply", "-0", "1,2,3,4", "white", "lamp", "checks", "<", "&amp;", "65536",
+                         "grp", "shapegroup", "instance"};
 
 std::vector<std::string> splitLines(const std::string& s) {
     std::vector<std::string> lines;
