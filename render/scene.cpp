@@ -158,7 +158,7 @@ LightPtr areaLightOf(const ShapeDescription& s) {
     const SpectrumTexturePtr radiance =
         s.emissionTexture ? s.emissionTexture : std::make_shared<ConstantSpectrumTexture>(s.emission);
     if (s.type == ShapeDescription::Type::Mesh) return std::make_shared<AreaLight>(s.mesh.get(), radiance);
-    if (s.type == ShapeDescription::Type::Sphere) return std::make_shared<AreaLight>(s.center, s.radius, s.flipNormals, radiance);
+    if (s.type == ShapeDescription::Type::Sphere) return std::make_shared<AreaLight>(s.center, s.radius, s.frame, s.flipNormals, radiance);
     return std::make_shared<AreaLight>(s.cylinder, s.radius, s.flipNormals, radiance);
 }
 
@@ -343,7 +343,7 @@ void sphereInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     si.p = s.center + s.radius * n;
     if (s.flipNormals) n = -n;
     si.ng = si.ns = n;
-    const vec3 local = (si.p - s.center) / s.radius;
+    const vec3 local = glm::transpose(s.frame) * ((si.p - s.center) / s.radius);  // object space
     si.uv = sphereUV(local);
     // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
     // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
@@ -353,11 +353,11 @@ void sphereInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     si.dpScale = 2 * kPi * s.radius;
     const float rd = std::sqrt(local.x * local.x + local.y * local.y);
     if (rd > 1e-6f) {
-        si.dpdu = vec3(-local.y, local.x, 0.0f);
-        si.dpdv = 0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd);
+        si.dpdu = s.frame * vec3(-local.y, local.x, 0.0f);
+        si.dpdv = s.frame * (0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd));
     } else {
-        si.dpdu = vec3(1, 0, 0);
-        si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
+        si.dpdu = s.frame * vec3(1, 0, 0);
+        si.dpdv = s.frame * vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
     }
 }
 }  // namespace

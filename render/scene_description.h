@@ -30,6 +30,7 @@ struct ShapeDescription {
     // World space for a top-level shape, the group's space for a shape of a ShapeGroupDescription.
     std::shared_ptr<TriangleMesh> mesh;  // Mesh: already transformed by the shape's to_world
     vec3 center{0.0f};                   // Sphere
+    mat3 frame{1.0f};                    // Sphere: its local axes (to_world's rotation), for uv and tangents
     float radius = 1.0f;                 // Sphere, Cylinder
     CylinderGeometry cylinder;           // Cylinder (world space)
     bool flipNormals = false;            // Sphere, Cylinder: normals point inwards

@@ -17,8 +17,8 @@ AreaLight::AreaLight(const TriangleMesh* mesh, SpectrumTexturePtr radiance)
     triangles_ = Distribution1D(areas);
 }
 
-AreaLight::AreaLight(const vec3& center, float radius, bool inward, SpectrumTexturePtr radiance)
-    : kind_(Kind::Sphere), center_(center), radius_(radius), inward_(inward), area_(4.0f * kPi * radius * radius),
+AreaLight::AreaLight(const vec3& center, float radius, const mat3& frame, bool inward, SpectrumTexturePtr radiance)
+    : kind_(Kind::Sphere), center_(center), radius_(radius), frame_(frame), inward_(inward), area_(4.0f * kPi * radius * radius),
       radiance_(std::move(radiance)) {}
 
 AreaLight::AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumTexturePtr radiance)
@@ -77,7 +77,7 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
             const vec3 n = sampleUniformSphere(u);
             ls.pLight = center_ + radius_ * n;
             ls.nLight = inward_ ? -n : n;
-            ls.uv = sphereUV(n);
+            ls.uv = sphereUV(glm::transpose(frame_) * n);
             const vec3 d = ls.pLight - p;
             const float dist2 = glm::dot(d, d);
             if (dist2 <= 0) return std::nullopt;
@@ -99,7 +99,7 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
             ls.pLight = p + t * ls.wi;
             const vec3 n = glm::normalize(ls.pLight - center_);
             ls.nLight = inward_ ? -n : n;
-            ls.uv = sphereUV(n);
+            ls.uv = sphereUV(glm::transpose(frame_) * n);
             ls.pdf = uniformConePdf(cosMax);
         }
     }

@@ -23,8 +23,8 @@ class AreaLight final : public Light {
 public:
     /// Mesh emitter (mesh in world space; must outlive the light).
     AreaLight(const TriangleMesh* mesh, SpectrumTexturePtr radiance);
-    /// Sphere emitter; `inward` when the sphere's normals are flipped.
-    AreaLight(const vec3& center, float radius, bool inward, SpectrumTexturePtr radiance);
+    /// Sphere emitter with its local axes `frame` (for uv); `inward` when its normals are flipped.
+    AreaLight(const vec3& center, float radius, const mat3& frame, bool inward, SpectrumTexturePtr radiance);
     /// Open cylinder emitter (world space); `inward` when its normals are flipped.
     AreaLight(const CylinderGeometry& cylinder, float radius, bool inward, SpectrumTexturePtr radiance);
 
@@ -44,6 +44,7 @@ private:
     CylinderGeometry cylinder_;
     vec3 center_{0.0f};
     float radius_ = 0.0f;
+    mat3 frame_{1.0f};  // sphere: object-space axes
     bool inward_ = false;
     float area_ = 0.0f;
     SpectrumTexturePtr radiance_;

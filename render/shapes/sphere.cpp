@@ -1,5 +1,5 @@
 // The analytic sphere (Mitsuba "sphere"): center and radius, placed by a to_world that may only
-// rotate, translate and scale uniformly (a sphere stays a sphere). The scene traces it as Embree
+// rotate, translate and scale uniformly (a sphere stays a sphere); the rotation turns its uv. The scene traces it as Embree
 // user geometry with the analytic test of core/sphere_intersection.h (render/scene.cpp).
 #include "render/shapes/shape.h"
 
@@ -16,7 +16,11 @@ std::shared_ptr<ShapeDescription> createSphere(const Properties& p) {
     const float r = p.getFloat("radius", 1.0f);
     if (!(r > 0)) failAt(p.locationOf("radius"), "sphere radius must be positive");
     s->center = transformPoint(toWorld, c);
-    s->radius = r * uniformScale(toWorld, p.locationOf("to_world"), "sphere");
+    const float scale = uniformScale(toWorld, p.locationOf("to_world"), "sphere");
+    s->radius = r * scale;
+    // Mitsuba 3 (src/shapes/sphere.cpp) computes uv and ∂p/∂u, ∂p/∂v in the sphere's object space:
+    // a rotated sphere's texture turns with it.
+    s->frame = mat3(toWorld) / scale;
     s->flipNormals = p.getBool("flip_normals", false);
     return s;
 }

@@ -56,10 +56,9 @@ const char* kSceneHead = R"(<scene version="3.0.0">
 
 /// Three groups: a cube and a sphere placed by translations and uniform scales; a cube and a
 /// cylinder placed by rotations too; a textured cube and a rectangle placed by a non-uniform scale
-/// and rotations. An analytic shape written in place keeps to rotations, translations and uniform
-/// scales, and iris's written-out sphere drops the rotation of its to_world (its uv and tangents
-/// follow the world axes, where an instanced sphere's follow the instance, as Mitsuba 3's do: the
-/// same image in distribution, not pixel for pixel), hence no rotated sphere here.
+/// and rotations, with a rotated checkered sphere (its uv and tangents turn with its to_world, written
+/// out or instanced, as Mitsuba 3's). An analytic shape written in place keeps to rotations,
+/// translations and uniform scales.
 std::vector<Group> testGroups() {
     const std::string checker = R"(<bsdf type="diffuse"><texture name="reflectance" type="checkerboard">
         <rgb name="color0" value="0.8, 0.2, 0.1"/><rgb name="color1" value="0.1, 0.3, 0.9"/>
@@ -74,7 +73,9 @@ std::vector<Group> testGroups() {
     Group tube{"tube",
                {cube,
                 {"<shape type=\"cylinder\"><float name=\"radius\" value=\"0.15\"/>",
-                 "<rotate x=\"1\" angle=\"-90\"/><translate x=\"-0.6\" y=\"-0.4\"/>", "<bsdf type=\"diffuse\"/></shape>"}},
+                 "<rotate x=\"1\" angle=\"-90\"/><translate x=\"-0.6\" y=\"-0.4\"/>", "<bsdf type=\"diffuse\"/></shape>"},
+                {"<shape type=\"sphere\"><float name=\"radius\" value=\"0.3\"/>",
+                 "<rotate x=\"1\" angle=\"50\"/><rotate z=\"1\" angle=\"70\"/><translate x=\"0.5\" y=\"0.7\"/>", checker}},
                {"<rotate y=\"1\" angle=\"30\"/><translate x=\"-0.3\" y=\"0.6\" z=\"1.5\"/>",
                 "<scale value=\"0.6\"/><rotate x=\"1\" angle=\"25\"/><rotate z=\"1\" angle=\"-40\"/><translate x=\"2.2\" y=\"-0.5\" z=\"-0.5\"/>"}};
     Group slab{"slab",

@@ -1,10 +1,12 @@
 // ∂p/∂u and ∂p/∂v of the surface interaction (what `bumpmap` needs, with their lengths): from
 // a triangle mesh's uvs (a rectangle stretched to a non-square uv mapping) and from the analytic
 // sphere's parametrisation (Mitsuba 3: u = φ/2π, v = θ/π); both checked against finite
-// differences of the hit point over uv.
+// differences of the hit point over uv; a rotated sphere's uv and tangents turn with its to_world
+// (Mitsuba 3 computes them in object space), also for the uv of its emitter's light samples.
 #include <gtest/gtest.h>
 
 #include "core/ray.h"
+#include "render/lights/light.h"
 #include "render/loader/scene_loader.h"
 #include "render/scene.h"
 
@@ -78,6 +80,42 @@ TEST(SurfaceDerivatives, AnalyticSphere) {
     const SurfaceInteraction pole = hitDir(0.0f, 0.0f);
     EXPECT_TRUE(isFinite(pole.dpdu) && isFinite(pole.dpdv));
     EXPECT_GT(glm::length(glm::cross(pole.dpdu, pole.dpdv)), 0.0f);
+}
+
+TEST(SurfaceDerivatives, ARotatedSpheresUvTurnsWithIt) {
+    // to_world rotates 90° about z (object x → world y) and about x, then scales by 2 and moves:
+    // the world point c + r R q has the uv the unrotated sphere has at c + r q.
+    const std::string rotated = R"(<scene version="3.0.0"><shape type="sphere">
+  <transform name="to_world"><rotate z="1" angle="90"/><rotate x="1" angle="30"/><scale value="2"/><translate x="1" y="-1"/></transform>
+  <emitter type="area"><texture name="radiance" type="checkerboard"/></emitter></shape></scene>)";
+    const std::string plain = R"(<scene version="3.0.0"><shape type="sphere"><float name="radius" value="2"/></shape></scene>)";
+    Scene rs(loadSceneFromString(rotated, ".")), ps(loadSceneFromString(plain, "."));
+    const mat3 R = mat3(glm::rotate(mat4(1.0f), glm::radians(30.0f), vec3(1, 0, 0)) *
+                        glm::rotate(mat4(1.0f), glm::radians(90.0f), vec3(0, 0, 1)));
+    const vec3 c(1.0f, -1.0f, 0.0f);
+    for (const vec3 q : {vec3(0.48f, 0.36f, 0.8f), vec3(0.0f, 0.6f, -0.8f), vec3(-0.48f, 0.6f, 0.64f)}) {
+        const auto a = rs.intersect(Ray(c + 10.0f * (R * q), -(R * q)));
+        const auto b = ps.intersect(Ray(10.0f * q, -q));
+        ASSERT_TRUE(a && b);
+        EXPECT_NEAR(a->uv.x, b->uv.x, 1e-5f);
+        EXPECT_NEAR(a->uv.y, b->uv.y, 1e-5f);
+        expectVecNear(a->dpdu, R * b->dpdu, 1e-4f, "dp/du turns with the sphere");
+        expectVecNear(a->dpdv, R * b->dpdv, 1e-4f, "dp/dv turns with the sphere");
+        // The emitter's sample towards that point carries the same uv (textured radiance).
+        const vec3 from = c + 5.0f * (R * q);
+        const Light& light = *rs.lights().at(0);
+        for (float u = 0.05f; u < 1.0f; u += 0.3f) {
+            const auto ls = light.sampleLi(from, vec2(u, 0.4f), SampledWavelengths::rgb(defaultChannelWavelengths()));
+            if (!ls) continue;
+            const auto hit = rs.intersect(Ray(from, ls->wi));
+            ASSERT_TRUE(hit.has_value());
+            EXPECT_NEAR(glm::length(hit->uv - ls->uv), 0.0f, 2e-4f);
+        }
+    }
+    // Without the rotation (the old behaviour) the uv would differ: the test can fail.
+    const auto a = rs.intersect(Ray(c + 10.0f * (R * vec3(0.48f, 0.36f, 0.8f)), -(R * vec3(0.48f, 0.36f, 0.8f))));
+    const auto w = ps.intersect(Ray(10.0f * (R * vec3(0.48f, 0.36f, 0.8f)), -(R * vec3(0.48f, 0.36f, 0.8f))));
+    EXPECT_GT(glm::length(a->uv - w->uv), 0.05f);
 }
 
 }  // namespace
