@@ -53,6 +53,9 @@ inline ShadingPoint shadingPointAt(const SurfaceInteraction& si) {
     ShadingPoint sp;
     sp.tex.uv = si.uv;
     sp.tex.p = si.p;
+    sp.tex.mesh = si.mesh;
+    sp.tex.triangle = si.triangle;
+    sp.tex.bary = si.bary;
     sp.ng = si.ng;
     sp.dpdu = si.dpScale * si.dpdu;
     sp.dpdv = si.dpScale * si.dpdv;

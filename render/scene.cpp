@@ -254,6 +254,9 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
         const TriangleMesh& m = *s.mesh;
         const uint32_t* idx = &m.indices[3 * rh.hit.primID];
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+        si.mesh = &m;
+        si.triangle = rh.hit.primID;
+        si.bary = vec2(b1, b2);
         const vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
         // Barycentric interpolation of the hit point is more accurate than o + t d.
         si.p = b0 * p0 + b1 * p1 + b2 * p2;
