@@ -1,9 +1,10 @@
 // The `mesh_attribute` texture (Mitsuba 3, src/textures/mesh_attribute.cpp): a triangle mesh's
 // per-vertex or per-face attribute (core/mesh.h MeshAttribute, e.g. a PLY file's vertex colours)
-// read at the hit. Its needs are checked when the scene loads, per shape, by
-// checkMeshAttributes (the shape loader calls it with the shape's bsdf), so a scene never renders
-// a lookup that cannot be served; such a lookup (a query without a mesh or without the attribute,
-// only possible from code) gives 0.
+// read at the hit (a material's lookups, an area emitter's radiance at a hit or a light sample).
+// Its needs are checked when the scene loads, per shape, by checkMeshAttributes (the shape loader
+// calls it with the shape's bsdf and emitter), so a scene never renders a lookup that cannot be
+// served; such a lookup (a query without a mesh or without the attribute, only possible from code)
+// gives 0.
 #pragma once
 
 #include <string>

@@ -69,7 +69,7 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
         return;
     }
     scene.lights.push_back(LightRegistry::instance().create(p));
-    checkMeshAttributes(p, nullptr, strCat("the ", p.type(), " emitter, which lights no mesh"));  // e.g. a spot's texture
+    checkMeshAttributes(p, nullptr, strCat("the ", p.type(), " emitter (not on a shape)"));  // e.g. a spot's texture
 }
 
 void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {

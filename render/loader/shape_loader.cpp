@@ -49,20 +49,21 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
-/// The mesh_attribute textures of the shape's bsdf must name attributes of its mesh (checked here,
-/// per shape, because one bsdf may serve several shapes); spheres and cylinders have none.
-void checkBsdfAttributes(const Properties& bsdf, const ShapeDescription& s) {
+/// The mesh_attribute textures of the shape's bsdf or emitter must name attributes of its mesh
+/// (checked here, per shape, because one bsdf may serve several shapes); spheres and cylinders
+/// have none.
+void checkAttributes(const Properties& tree, const ShapeDescription& s) {
     if (s.type == ShapeDescription::Type::Mesh)
-        checkMeshAttributes(bsdf, s.mesh.get(), strCat("shape '", s.name, "'"));
+        checkMeshAttributes(tree, s.mesh.get(), strCat("shape '", s.name, "'"));
     else
-        checkMeshAttributes(bsdf, nullptr, strCat("shape '", s.name, "' (a ", s.type == ShapeDescription::Type::Sphere ? "sphere" : "cylinder", ")"));
+        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (a ", s.type == ShapeDescription::Type::Sphere ? "sphere" : "cylinder", ")"));
 }
 
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
     if (c.bsdf) {
         if (c.bsdf->tag() != "bsdf") failAt(p.locationOf("bsdf"), "parameter 'bsdf' must be a <bsdf>");
         s.material = materialFor(*c.bsdf);
-        checkBsdfAttributes(*c.bsdf, s);
+        checkAttributes(*c.bsdf, s);
     }
     if (c.emitter) {
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
@@ -71,8 +72,7 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
         const PropertiesPtr* radiance = c.emitter->peekObject("radiance");
         if (radiance && (*radiance)->tag() == "texture") {  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
             s.emissionTexture = getSpectrumTexture(*c.emitter, "radiance", SpectrumKind::Illuminant);
-            checkMeshAttributes(**radiance, nullptr, strCat("the area emitter of shape '", s.name,
-                                                            "' (iris evaluates emitted radiance without mesh attributes)"));
+            checkAttributes(**radiance, s);
         } else
             s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
         c.emitter->checkUnqueried();

@@ -1,8 +1,9 @@
 // The `mesh_attribute` texture (materials/textures/mesh_attribute.cpp): lookups interpolate vertex
 // attributes with the hit's barycentrics and keep face attributes constant; a diffuse quad coloured
 // by its PLY vertex colours under a uniform environment renders its albedo (both in RGB and in
-// spectral mode), the interpolated colour at the centre of a quad of four colours; and a
-// mesh_attribute that its shape cannot serve is refused when the scene loads, naming file:line.
+// spectral mode), the interpolated colour at the centre of a quad of four colours; an emitting quad
+// shines its vertex colours (light samples and hits agree); and a mesh_attribute that its shape
+// cannot serve is refused when the scene loads, naming file:line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,9 @@
 
 #include "core/mesh.h"
 #include "core/registry.h"
+#include "core/rng.h"
+#include "materials/material.h"
+#include "render/lights/light.h"
 #include "materials/textures/texture.h"
 #include "spectral/color_space.h"
 #include "tests/support/error_of.h"
@@ -210,10 +214,53 @@ TEST(MeshAttribute, WhatAShapeCannotServeIsAnErrorAtLoad) {
     // Names must say vertex_ or face_ (Mitsuba's rule).
     const std::string badName = quadScene(ply, bsdf("diffuse", attributeTexture("reflectance", "color")), 20.0f);
     EXPECT_NE(loadError(badName).find("must start with \"vertex_\" or \"face_\""), std::string::npos) << loadError(badName);
-    // An area emitter's radiance is evaluated without the hit's triangle in iris: refused.
-    const std::string emitter = "<scene version=\"3.0.0\">\n<shape type=\"ply\"><string name=\"filename\" value=\"" + ply +
-                                "\"/>\n<emitter type=\"area\">\n" + attributeTexture("radiance", "vertex_color") + "\n</emitter></shape></scene>";
-    expectAt(loadError(emitter), emitter, {"vertex_color", "area emitter"});
+    // An area emitter on a sphere, and a scene-level emitter (a spot's slide), have no attributes.
+    const std::string sphereLamp = "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n<emitter type=\"area\">\n" +
+                                   attributeTexture("radiance", "vertex_color") + "\n</emitter></shape></scene>";
+    expectAt(loadError(sphereLamp), sphereLamp, {"vertex_color", "sphere", "no mesh attributes"});
+    const std::string spot = "<scene version=\"3.0.0\">\n<emitter type=\"spot\">\n" + attributeTexture("texture", "vertex_color") +
+                             "\n</emitter></scene>";
+    expectAt(loadError(spot), spot, {"vertex_color", "spot emitter", "no mesh attributes"});
+}
+
+TEST(MeshAttribute, AnEmitterColouredByItsVerticesShinesTheirInterpolatedColour) {
+    const vec3 c[4] = {{2.0f, 0.2f, 0.4f}, {0.3f, 1.5f, 0.1f}, {0.4f, 0.6f, 3.0f}, {1.0f, 1.0f, 1.0f}};
+    const int face[3] = {0, 0, 0};
+    const std::string ply = writeQuad("lamp.ply", c, face);
+    const std::string lamp = "<shape type=\"ply\"><string name=\"filename\" value=\"" + ply + "\"/>\n<emitter type=\"area\">" +
+                             attributeTexture("radiance", "vertex_color") + "</emitter></shape>\n";
+    // A light sample and the ray towards it see the same radiance: the sample's barycentrics are
+    // those the hit gets (render/lights/area_light.cpp), and the colour varies over the quad.
+    Scene scene(loadSceneFromString("<scene version=\"3.0.0\">" + lamp + "</scene>", "."));
+    ASSERT_EQ(scene.lights().size(), 1u);
+    Pcg32 rng(3, 1);
+    int checked = 0;
+    float lowest = 1e9f, highest = 0.0f;
+    for (int i = 0; i < 200; ++i) {
+        const vec3 p(0.1f, -0.2f, 3.0f);
+        const auto ls = scene.lights()[0]->sampleLi(p, vec2(rng.uniform(), rng.uniform()), kRGB);
+        ASSERT_TRUE(ls.has_value());
+        const auto hit = scene.intersect(Ray(p, ls->wi));
+        ASSERT_TRUE(hit.has_value());
+        const SampledSpectrum le = hit->areaLight->Le(textureQueryAt(*hit), hit->ng, hit->wo, kRGB);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(le[k], ls->L[k], 1e-4f * (1 + le[k]));
+        lowest = std::min(lowest, le[0]);
+        highest = std::max(highest, le[0]);
+        ++checked;
+    }
+    EXPECT_EQ(checked, 200);
+    EXPECT_GT(highest - lowest, 0.5f);  // the samples spread over different colours
+    // Seen directly, the middle of the quad shows (c0 + c2)/2 (see the reflectance test above).
+    const std::string xml = "<scene version=\"3.0.0\">\n<integrator type=\"direct\"/>\n"
+                            "<sensor type=\"perspective\"><float name=\"fov\" value=\"0.5\"/>\n"
+                            "<transform name=\"to_world\"><lookat origin=\"0, 0, 2\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>\n"
+                            "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" value=\"4\"/></film></sensor>\n" +
+                            lamp + "</scene>\n";
+    const dvec3 want = 0.5 * (dvec3(c[0]) + dvec3(c[2]));
+    for (const bool rgb : {true, false}) {
+        double se = 0;
+        expectColour(renderMean(xml, rgb, &se), want, 5 * se + 0.02, rgb ? "rgb" : "spectral");
+    }
 }
 
 }  // namespace iris
