@@ -239,11 +239,13 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    // Every return returns `hit`, filled in place, so that the record is never copied (NRVO).
+    std::optional<SurfaceInteraction> hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
 
     const ShapeData& sd = shapes_[rh.hit.geomID];
     const ShapeDescription& s = *sd.desc;
-    SurfaceInteraction si;
+    SurfaceInteraction& si = hit.emplace();
     si.t = rh.ray.tfar;
     si.p = ray.at(si.t);
     si.wo = -glm::normalize(ray.d);
@@ -310,7 +312,7 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
             si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
         }
     }
-    return si;
+    return hit;
 }
 
 bool Scene::occluded(const Ray& ray) const {
