@@ -8,6 +8,27 @@
 
 namespace iris {
 
+int MeshAttribute::elements(const TriangleMesh& mesh, size_t tri, vec2 b, size_t element[3], float weight[3]) const {
+    if (perFace()) {
+        element[0] = tri;
+        weight[0] = 1.0f;
+        return 1;
+    }
+    // Mitsuba 3 Mesh::interpolate_attribute: v0 b0 + v1 b1 + v2 b2 with b0 = 1 − b1 − b2.
+    for (int k = 0; k < 3; ++k) element[k] = mesh.indices[3 * tri + size_t(k)];
+    weight[0] = 1.0f - b.x - b.y, weight[1] = b.x, weight[2] = b.y;
+    return 3;
+}
+
+float MeshAttribute::at(const TriangleMesh& mesh, size_t tri, vec2 b, int c) const {
+    size_t element[3];
+    float weight[3];
+    const int n = elements(mesh, tri, b, element, weight);
+    float v = 0.0f;
+    for (int k = 0; k < n; ++k) v += weight[k] * value(element[k], c);
+    return v;
+}
+
 void TriangleMesh::transform(const mat4& m) {
     for (vec3& p : positions) p = transformPoint(m, p);
     const mat3 nm = glm::transpose(glm::inverse(mat3(m)));
@@ -35,6 +56,11 @@ void TriangleMesh::validate() const {
     if (!uvs.empty() && uvs.size() != nv) fail(name, ": uv count differs from vertex count");
     for (const vec3& p : positions)
         if (!isFinite(p)) fail(name, ": non-finite vertex position");
+    for (const MeshAttribute& a : attributes) {
+        const size_t count = a.perFace() ? triangleCount() : nv;
+        if (a.channels < 1 || a.values.size() != count * size_t(a.channels))
+            fail(name, ": attribute '", a.name, "' has ", a.values.size(), " values for ", count, " elements");
+    }
 }
 
 TriangleMesh makeRectangle() {

@@ -10,6 +10,7 @@ namespace iris {
 
 class Material;
 class Light;
+struct TriangleMesh;
 
 struct Ray {
     vec3 o{0.0f}, d{0, 0, 1};
@@ -42,6 +43,10 @@ struct SurfaceInteraction {
     vec2 uv{0.0f};
     vec3 wo{0.0f};       // direction towards the ray origin
     int shapeIndex = -1;
+    // Triangle meshes: the mesh, the triangle and the hit's barycentrics (b1, b2) (for mesh attributes).
+    const TriangleMesh* mesh = nullptr;
+    uint32_t triangle = 0;
+    vec2 bary{0.0f};
     const Material* material = nullptr;
     const Light* areaLight = nullptr;
 

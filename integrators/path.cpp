@@ -33,7 +33,7 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         if (!hit) {
             if (countEmission)
                 for (const Light* light : scene.infiniteLights()) {
-                    const SampledSpectrum Le = light->Le(vec3(0.0f), vec3(0.0f), vec2(0.0f), ray.d, wl);
+                    const SampledSpectrum Le = light->Le(TextureQuery{}, vec3(0.0f), ray.d, wl);
                     if (depth == 1 || specularBounce) {
                         L += beta * Le;
                     } else {
@@ -47,7 +47,7 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
 
         // Emission from an area light that the path hit.
         if (si.areaLight && countEmission) {
-            const SampledSpectrum Le = si.areaLight->Le(si.p, si.ng, si.uv, si.wo, wl);
+            const SampledSpectrum Le = si.areaLight->Le(textureQueryAt(si), si.ng, si.wo, wl);
             if (!Le.isBlack()) {
                 if (depth == 1 || specularBounce) {
                     L += beta * Le;

@@ -286,9 +286,9 @@ void VolPathIntegrator::addEmission(const Scene& scene, const Ray& ray, const Su
         ps.L += ps.beta * Le / reduce(ps.rU + rL, h, wl);
     };
     if (!si) {
-        for (const Light* light : scene.infiniteLights()) add(*light, light->Le(vec3(0.0f), vec3(0.0f), vec2(0.0f), ray.d, wl));
+        for (const Light* light : scene.infiniteLights()) add(*light, light->Le(TextureQuery{}, vec3(0.0f), ray.d, wl));
     } else if (si->areaLight) {
-        add(*si->areaLight, si->areaLight->Le(si->p, si->ng, si->uv, si->wo, wl));
+        add(*si->areaLight, si->areaLight->Le(textureQueryAt(*si), si->ng, si->wo, wl));
     }
 }
 

@@ -46,13 +46,24 @@ public:
     virtual bool isPassThrough() const { return false; }
 };
 
+/// Where a surface hit looks up textures: uv, position and, on meshes, the triangle and barycentrics
+/// (the materials' lookups and an area emitter's radiance at the hit).
+inline TextureQuery textureQueryAt(const SurfaceInteraction& si) {
+    TextureQuery q;
+    q.uv = si.uv;
+    q.p = si.p;
+    q.mesh = si.mesh;
+    q.triangle = si.triangle;
+    q.bary = si.bary;
+    return q;
+}
+
 /// The shading point of a surface hit as the integrators give it to its material: uv, position,
 /// the derivatives with their lengths, and the shading frame (smooth normal, tangent ∂p/∂u) after
 /// the material's own perturbation (Material::shadingFrame).
 inline ShadingPoint shadingPointAt(const SurfaceInteraction& si) {
     ShadingPoint sp;
-    sp.tex.uv = si.uv;
-    sp.tex.p = si.p;
+    sp.tex = textureQueryAt(si);
     sp.ng = si.ng;
     sp.dpdu = si.dpScale * si.dpdu;
     sp.dpdv = si.dpScale * si.dpdv;

@@ -306,6 +306,9 @@ void meshInteraction(const ShapeDescription& s, unsigned prim, float b1, float b
     const TriangleMesh& m = *s.mesh;
     const uint32_t* idx = &m.indices[3 * prim];
     const float b0 = 1.0f - b1 - b2;
+    si.mesh = &m;  // for mesh_attribute textures
+    si.triangle = prim;
+    si.bary = vec2(b1, b2);
     const vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
     // Barycentric interpolation of the hit point is more accurate than o + t d.
     si.p = b0 * p0 + b1 * p1 + b2 * p2;

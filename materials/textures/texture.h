@@ -10,10 +10,17 @@
 
 namespace iris {
 
-/// Where a texture is looked up.
+struct TriangleMesh;
+
+/// Where a texture is looked up. A hit on a triangle mesh also names the mesh, the triangle and
+/// the barycentrics (b1, b2) of the hit (weights of the triangle's second and third corners), for
+/// the `mesh_attribute` texture; elsewhere `mesh` is nullptr.
 struct TextureQuery {
     vec2 uv{0.0f};
     vec3 p{0.0f};
+    const TriangleMesh* mesh = nullptr;
+    uint32_t triangle = 0;
+    vec2 bary{0.0f};
 };
 
 class FloatTexture {

@@ -25,15 +25,15 @@ AreaLight::AreaLight(const CylinderGeometry& cylinder, float radius, bool inward
     : kind_(Kind::Cylinder), cylinder_(cylinder), radius_(radius), inward_(inward),
       area_(2.0f * kPi * radius * cylinder.length), radiance_(std::move(radiance)) {}
 
-void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const {
+void AreaLight::sampleArea(const vec2& u, TextureQuery& at, vec3& n) const {
     if (kind_ == Kind::Cylinder) {
         // Mitsuba 3 Cylinder::sample_position: φ = 2π u.y, position u.x · length along the axis.
         const CylinderGeometry& c = cylinder_;
         const float phi = 2 * kPi * u.y;
         const vec3 radial = std::cos(phi) * c.s + std::sin(phi) * c.t;
-        p = c.p0 + u.x * c.length * c.axis + radius_ * radial;
+        at.p = c.p0 + u.x * c.length * c.axis + radius_ * radial;
         n = inward_ ? -radial : radial;
-        uv = vec2(u.y, u.x);  // the cylinder's uv (render/scene.cpp): φ/2π, position / length
+        at.uv = vec2(u.y, u.x);  // the cylinder's uv (render/scene.cpp): φ/2π, position / length
         return;
     }
     // Pick a triangle by area, then a point on it (pdf_A = 1/A).
@@ -42,26 +42,30 @@ void AreaLight::sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const {
     const vec2 b = sampleUniformTriangle(vec2(uRemapped, u.y));
     const uint32_t* idx = &mesh_->indices[3 * tri];
     const vec3 &a = mesh_->positions[idx[0]], &bb = mesh_->positions[idx[1]], &c = mesh_->positions[idx[2]];
-    p = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
+    at.p = b.x * a + b.y * bb + (1 - b.x - b.y) * c;
     n = glm::normalize(glm::cross(bb - a, c - a));
     vec2 corner[3];  // the uv the scene gives a hit there (render/scene.cpp)
     mesh_->cornerUVs(size_t(tri), corner);
-    uv = b.x * corner[0] + b.y * corner[1] + (1 - b.x - b.y) * corner[2];
+    at.uv = b.x * corner[0] + b.y * corner[1] + (1 - b.x - b.y) * corner[2];
+    // The hit's barycentrics there (weights of corners 1 and 2), for mesh attributes.
+    at.mesh = mesh_;
+    at.triangle = uint32_t(tri);
+    at.bary = vec2(b.y, 1 - b.x - b.y);
 }
 
-SampledSpectrum AreaLight::Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const {
+SampledSpectrum AreaLight::Le(const TextureQuery& at, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
     if (glm::dot(n, w) <= 0) return SampledSpectrum(wl.size());  // one-sided emitter
-    TextureQuery q;
-    q.uv = uv;
-    q.p = p;
-    return radiance_->eval(q, wl);
+    return radiance_->eval(at, wl);
 }
 
 std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const {
     LightSample ls;
+    TextureQuery at;  // the sampled point as the radiance texture sees it
     if (kind_ != Kind::Sphere) {
         // Uniform area sampling (pdf_A = 1/A), converted to solid angle.
-        sampleArea(u, ls.pLight, ls.nLight, ls.uv);
+        sampleArea(u, at, ls.nLight);
+        ls.pLight = at.p;
+        ls.uv = at.uv;
         const vec3 d = ls.pLight - p;
         const float dist2 = glm::dot(d, d);
         if (dist2 <= 0) return std::nullopt;
@@ -103,7 +107,9 @@ std::optional<LightSample> AreaLight::sampleLi(const vec3& p, const vec2& u, con
             ls.pdf = uniformConePdf(cosMax);
         }
     }
-    ls.L = Le(ls.pLight, ls.nLight, ls.uv, -ls.wi, wl);
+    at.p = ls.pLight;
+    at.uv = ls.uv;
+    ls.L = Le(at, ls.nLight, -ls.wi, wl);
     if (ls.L.isBlack()) return std::nullopt;
     return ls;
 }

@@ -3,7 +3,7 @@
 // Mitsuba 3's sample_position: φ and the axial position uniform); spheres by the cone of
 // directions they subtend (pbrt-v4 §6.2.4). The radiance may be a texture over the shape's uv
 // (Mitsuba's area emitter with a textured `radiance`), looked up at the hit's or the sampled
-// point's uv; sampling stays uniform by area (Mitsuba 3 importance-samples such a texture through
+// point's uv (and, on meshes, triangle and barycentrics, for `mesh_attribute`); sampling stays uniform by area (Mitsuba 3 importance-samples such a texture through
 // the shape's parametrisation: same expectation, other variance).
 #pragma once
 
@@ -31,12 +31,13 @@ public:
     Type type() const override { return Type::Area; }
     std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const override;
     float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const override;
-    SampledSpectrum Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const override;
+    SampledSpectrum Le(const TextureQuery& at, const vec3& n, const vec3& w, const SampledWavelengths& wl) const override;
     float area() const { return area_; }
 
 private:
-    /// Uniform area sample of the mesh or cylinder (point, normal and uv).
-    void sampleArea(const vec2& u, vec3& p, vec3& n, vec2& uv) const;
+    /// Uniform area sample of the mesh or cylinder: the point as a texture sees it (position, uv;
+    /// on meshes the triangle and barycentrics) and the normal.
+    void sampleArea(const vec2& u, TextureQuery& at, vec3& n) const;
 
     enum class Kind { Mesh, Sphere, Cylinder } kind_;
     const TriangleMesh* mesh_ = nullptr;

@@ -23,7 +23,7 @@ public:
         return ls;
     }
     float pdfLi(const vec3&, const vec3&, const SurfaceInteraction*) const override { return uniformSpherePdf(); }
-    SampledSpectrum Le(const vec3&, const vec3&, const vec2&, const vec3&, const SampledWavelengths& wl) const override {
+    SampledSpectrum Le(const TextureQuery&, const vec3&, const vec3&, const SampledWavelengths& wl) const override {
         return radiance_->sample(wl);
     }
 

@@ -77,7 +77,7 @@ public:
         return dist_.pdf(dirToUV(v)) / (2.0f * kPi * kPi * sinTheta);
     }
 
-    SampledSpectrum Le(const vec3&, const vec3&, const vec2&, const vec3& w, const SampledWavelengths& wl) const override {
+    SampledSpectrum Le(const TextureQuery&, const vec3&, const vec3& w, const SampledWavelengths& wl) const override {
         return lookup(dirToUV(glm::normalize(toLocal_ * w)), wl);
     }
 

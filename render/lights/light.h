@@ -8,6 +8,7 @@
 
 #include "core/ray.h"
 #include "core/registry.h"
+#include "materials/textures/texture.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
 
@@ -46,9 +47,10 @@ public:
     /// `hit` is the intersection with this light; for infinite lights hit is unused.
     virtual float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const { return 0.0f; }
 
-    /// Emitted radiance: area lights at a surface point (position p, normal n, surface uv) towards
-    /// w; infinite lights for a ray leaving the scene in direction w (p, n and uv unused).
-    virtual SampledSpectrum Le(const vec3& p, const vec3& n, const vec2& uv, const vec3& w, const SampledWavelengths& wl) const {
+    /// Emitted radiance: area lights at a surface point (`at`: position, uv and, on meshes, the
+    /// triangle and barycentrics a radiance texture looks up; normal n) towards w; infinite lights
+    /// for a ray leaving the scene in direction w (at and n unused).
+    virtual SampledSpectrum Le(const TextureQuery& at, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
         return SampledSpectrum(wl.size());
     }
 };

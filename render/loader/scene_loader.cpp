@@ -2,6 +2,7 @@
 
 #include "core/memory_budget.h"
 #include "core/xml/xml_parser.h"
+#include "materials/textures/mesh_attribute.h"
 #include "render/film.h"
 #include "render/films/film_description.h"
 #include "render/integrator.h"
@@ -69,6 +70,7 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
         return;
     }
     scene.lights.push_back(LightRegistry::instance().create(p));
+    checkMeshAttributes(p, nullptr, strCat("the ", p.type(), " emitter (not on a shape)"));  // e.g. a spot's texture
 }
 
 void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {

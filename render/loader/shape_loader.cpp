@@ -3,6 +3,7 @@
 #include <tuple>
 
 #include "core/mesh.h"
+#include "materials/textures/mesh_attribute.h"
 #include "materials/textures/texture_params.h"
 #include "render/shapes/shape.h"
 #include "spectral/spectrum_params.h"
@@ -48,19 +49,31 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
+/// The mesh_attribute textures of the shape's bsdf or emitter must name attributes of its mesh
+/// (checked here, per shape, because one bsdf may serve several shapes); spheres and cylinders
+/// have none.
+void checkAttributes(const Properties& tree, const ShapeDescription& s) {
+    if (s.type == ShapeDescription::Type::Mesh)
+        checkMeshAttributes(tree, s.mesh.get(), strCat("shape '", s.name, "'"));
+    else
+        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (a ", s.type == ShapeDescription::Type::Sphere ? "sphere" : "cylinder", ")"));
+}
+
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
     if (c.bsdf) {
         if (c.bsdf->tag() != "bsdf") failAt(p.locationOf("bsdf"), "parameter 'bsdf' must be a <bsdf>");
         s.material = materialFor(*c.bsdf);
+        checkAttributes(*c.bsdf, s);
     }
     if (c.emitter) {
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
         if (c.emitter->type() != "area")
             failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area')");
         const PropertiesPtr* radiance = c.emitter->peekObject("radiance");
-        if (radiance && (*radiance)->tag() == "texture")  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
+        if (radiance && (*radiance)->tag() == "texture") {  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
             s.emissionTexture = getSpectrumTexture(*c.emitter, "radiance", SpectrumKind::Illuminant);
-        else
+            checkAttributes(**radiance, s);
+        } else
             s.emission = getSpectrum(*c.emitter, "radiance", SpectrumKind::Illuminant);
         c.emitter->checkUnqueried();
     }

@@ -41,6 +41,13 @@ def ply_seeds():
         'ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n'
         'property uchar red\nelement face 1\nproperty list uchar ushort vertex_index\nelement edge 1\n'
         'property int vertex1\nproperty int vertex2\nend_header\n0 0 0 9\n1 0 0 9\n1 1 0 9\n0 1 0 9\n4 0 1 2 3\n0 1\n')
+    # Mesh attributes: uchar vertex colours, a postfixed group, a lone scalar; colours on a quad face.
+    put('ply', 'attributes.ply',
+        'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n'
+        'property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float w_0\nproperty float w_1\n'
+        'property float quality\nelement face 1\nproperty list uchar int vertex_indices\nproperty uchar r\n'
+        'property uchar g\nproperty uchar b\nproperty float weight\nend_header\n'
+        '0 0 0 255 0 0 1 2 0.5\n1 0 0 0 255 0 3 4 1\n1 1 0 0 0 255 5 6 2\n0 1 0 9 9 9 7 8 3\n4 0 1 2 3 10 20 30 0.25\n')
 
 
 def obj_seeds():

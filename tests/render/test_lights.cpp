@@ -214,7 +214,7 @@ TEST(Lights, EnvironmentMapInterpolatesBilinearlyWhereTheVersionPlacesTexels) {
         double maxOther = 0;
         for (int i = 0; i < 2000; ++i) {
             const double u = rng.get1D(), v = 0.002 + 0.996 * rng.get1D();
-            const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), vec2(0.0f), directionOfUV(u, v), wl);
+            const SampledSpectrum L = env->Le(TextureQuery{}, vec3(0.0f), directionOfUV(u, v), wl);
             for (int c = 0; c < 3; ++c) {
                 const double ref = referenceValue(img, c, u, v, m3);
                 ASSERT_NEAR(L[c], ref, 2e-4 * ref + 1e-5) << "version " << version << " u " << u << " v " << v;
@@ -241,7 +241,7 @@ TEST(Lights, EnvironmentMapSamplingIsConsistent) {
             const auto ls = env->sampleLi(vec3(0.0f), sampler.get2D(), wl);
             ASSERT_TRUE(ls.has_value());
             const bool pdfOk = std::abs(env->pdfLi(vec3(0.0f), ls->wi, nullptr) - ls->pdf) <= 1e-3f * ls->pdf;
-            const bool leOk = std::abs(env->Le(vec3(0.0f), vec3(0.0f), vec2(0.0f), ls->wi, wl)[1] - ls->L[1]) <= 1e-4f * ls->L[1] + 1e-6f;
+            const bool leOk = std::abs(env->Le(TextureQuery{}, vec3(0.0f), ls->wi, wl)[1] - ls->L[1]) <= 1e-4f * ls->L[1] + 1e-6f;
             mismatches += !(pdfOk && leOk);
             const double v = ls->L[1] / ls->pdf;
             s += v;
@@ -309,7 +309,7 @@ TEST(Lights, EnvironmentMapSpectralLookupMatchesCornerSpectra) {
                     // from row y to y+1 (v = y/(H − 1) in Mitsuba 3, (y + ½)/H in 0.6).
                     const double fx = 0.25, fy = 0.5;
                     const double v = version >= 2 ? (y + fy) / (h - 1) : (y + 0.5 + fy) / h;
-                    const SampledSpectrum L = env->Le(vec3(0.0f), vec3(0.0f), vec2(0.0f), directionOfUV((x + 0.5 + fx) / w, v), wl);
+                    const SampledSpectrum L = env->Le(TextureQuery{}, vec3(0.0f), directionOfUV((x + 0.5 + fx) / w, v), wl);
                     const int xs[4] = {x, (x + 1) % w, x, (x + 1) % w}, ys[4] = {y, y, y + 1, y + 1};
                     const double wk[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
                     for (int i = 0; i < n; ++i) {

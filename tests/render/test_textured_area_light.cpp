@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/rng.h"
+#include "materials/material.h"
 #include "render/film.h"
 #include "render/lights/area_light.h"
 #include "render/loader/scene_loader.h"
@@ -43,7 +44,7 @@ TEST(TexturedAreaLight, SamplesAndHitsSeeTheTextureAtTheirUv) {
             ASSERT_TRUE(hit.has_value()) << shape;
             if (glm::length(hit->p - ls->pLight) > 1e-3f) continue;  // another part of the shape in front
             EXPECT_NEAR(glm::length(hit->uv - ls->uv), 0.0f, 2e-4f) << shape;
-            const SampledSpectrum le = hit->areaLight->Le(hit->p, hit->ng, hit->uv, hit->wo, kRGB);
+            const SampledSpectrum le = hit->areaLight->Le(textureQueryAt(*hit), hit->ng, hit->wo, kRGB);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(le[c], ls->L[c], 1e-5f * (1 + le[c])) << shape;
             ++seenBoth[le[0] > 1.0f ? 0 : 1];
             ++checked;
