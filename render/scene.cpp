@@ -346,7 +346,8 @@ void sphereInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     si.p = s.center + s.radius * n;
     if (s.flipNormals) n = -n;
     si.ng = si.ns = n;
-    const vec3 local = glm::transpose(s.frame) * ((si.p - s.center) / s.radius);  // object space
+    const vec3 world = (si.p - s.center) / s.radius;
+    const vec3 local = s.rotated ? glm::transpose(s.frame) * world : world;  // object space
     si.uv = sphereUV(local);
     // Mitsuba 3's sphere parametrisation (src/shapes/sphere.cpp): u = φ/2π, v = θ/π, so
     // ∂p/∂u = 2πr (−y, x, 0) and ∂p/∂v = πr (z cos φ, z sin φ, −sin θ) for the unit local
@@ -356,11 +357,15 @@ void sphereInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     si.dpScale = 2 * kPi * s.radius;
     const float rd = std::sqrt(local.x * local.x + local.y * local.y);
     if (rd > 1e-6f) {
-        si.dpdu = s.frame * vec3(-local.y, local.x, 0.0f);
-        si.dpdv = s.frame * (0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd));
+        si.dpdu = vec3(-local.y, local.x, 0.0f);
+        si.dpdv = 0.5f * vec3(local.z * local.x / rd, local.z * local.y / rd, -rd);
     } else {
-        si.dpdu = s.frame * vec3(1, 0, 0);
-        si.dpdv = s.frame * vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
+        si.dpdu = vec3(1, 0, 0);
+        si.dpdv = vec3(0, local.z > 0 ? 0.5f : -0.5f, 0);
+    }
+    if (s.rotated) {  // back to world space
+        si.dpdu = s.frame * si.dpdu;
+        si.dpdv = s.frame * si.dpdv;
     }
 }
 }  // namespace
@@ -383,25 +388,29 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    // Every return returns `hit`, filled in place, so that the record is never copied (NRVO).
+    std::optional<SurfaceInteraction> hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
 
+    SurfaceInteraction& si = hit.emplace();
     const unsigned inst = rh.hit.instID[0];
-    if (inst == RTC_INVALID_GEOMETRY_ID) return hitInteraction(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, ray, rh.ray.tfar);
+    if (inst == RTC_INVALID_GEOMETRY_ID) {
+        hitInteraction(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, ray, rh.ray.tfar, si);
+        return hit;
+    }
     // A hit inside an instance: the shape's interaction in the group's space, then carried to world.
     const InstanceData& in = instances_[inst - firstInstanceID_];
-    SurfaceInteraction si = hitInteraction(in.firstShape + rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v,
-                                           in.transform.toObjectRay(ray), rh.ray.tfar);
+    hitInteraction(in.firstShape + rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, in.transform.toObjectRay(ray), rh.ray.tfar, si);
     in.transform.toWorldInteraction(si);
     si.wo = -glm::normalize(ray.d);
-    return si;
+    return hit;
 }
 
 /// The interaction at a hit of shapes_[index] (primitive prim, barycentrics (b1, b2), distance t
-/// along `ray`), in the shape's own space.
-SurfaceInteraction Scene::hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t) const {
+/// along `ray`), in the shape's own space, written into the default-constructed `si`.
+void Scene::hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t, SurfaceInteraction& si) const {
     const ShapeData& sd = shapes_[index];
     const ShapeDescription& s = *sd.desc;
-    SurfaceInteraction si;
     si.t = t;
     si.p = ray.at(si.t);
     si.wo = -glm::normalize(ray.d);
@@ -414,7 +423,6 @@ SurfaceInteraction Scene::hitInteraction(size_t index, unsigned prim, float b1, 
         cylinderInteraction(s, si);
     else
         sphereInteraction(s, si);
-    return si;
 }
 
 bool Scene::occluded(const Ray& ray) const {

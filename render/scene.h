@@ -43,7 +43,7 @@ private:
     struct InstanceData;
     void addShapeData(const ShapeDescription& s);
     void addInstances(vec3& lo, vec3& hi);
-    SurfaceInteraction hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t) const;
+    void hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t, SurfaceInteraction& si) const;
 
     SceneDescription desc_;
     std::vector<ShapeData> shapes_;         // the top-level shapes (index = Embree geometry ID), then each group's

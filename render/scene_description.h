@@ -31,6 +31,7 @@ struct ShapeDescription {
     std::shared_ptr<TriangleMesh> mesh;  // Mesh: already transformed by the shape's to_world
     vec3 center{0.0f};                   // Sphere
     mat3 frame{1.0f};                    // Sphere: its local axes (to_world's rotation), for uv and tangents
+    bool rotated = false;                // Sphere: frame is not the identity
     float radius = 1.0f;                 // Sphere, Cylinder
     CylinderGeometry cylinder;           // Cylinder (world space)
     bool flipNormals = false;            // Sphere, Cylinder: normals point inwards

@@ -21,6 +21,7 @@ std::shared_ptr<ShapeDescription> createSphere(const Properties& p) {
     // Mitsuba 3 (src/shapes/sphere.cpp) computes uv and ∂p/∂u, ∂p/∂v in the sphere's object space:
     // a rotated sphere's texture turns with it.
     s->frame = mat3(toWorld) / scale;
+    s->rotated = s->frame != mat3(1.0f);
     s->flipNormals = p.getBool("flip_normals", false);
     return s;
 }

@@ -11,6 +11,7 @@
 #include "core/xml/xml_values.h"
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -174,7 +175,7 @@ TEST(MaskBSDF, WrongMasksAreRefusedWithTheirLine) {
         }
         return std::string();
     };
-    const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
+    const auto has = test::contains;
     const std::string noNested = err("<bsdf type=\"mask\"><float name=\"opacity\" value=\"0.5\"/></bsdf>\n");
     EXPECT_TRUE(has(noNested, "<string>:3: mask: no nested bsdf")) << noNested;
     const std::string two = err("<bsdf type=\"mask\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"conductor\"/>\n</bsdf>\n");

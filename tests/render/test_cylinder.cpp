@@ -266,7 +266,7 @@ TEST(CylinderShape, WrongCylindersAreRefusedWithTheirLine) {
     const auto err = [](const std::string& body) {
         return test::errorOf([&] { loadSceneFromString("<scene version=\"3.0.0\">\n" + body + "</scene>", "."); });
     };
-    const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
+    const auto has = test::contains;
     const std::string r0 = err("<shape type=\"cylinder\">\n<float name=\"radius\" value=\"0\"/></shape>\n");
     EXPECT_TRUE(has(r0, "<string>:3: cylinder radius must be positive")) << r0;
     const std::string same = err("<shape type=\"cylinder\">\n<point name=\"p0\" x=\"0\" y=\"0\" z=\"1\"/>\n"

@@ -14,18 +14,13 @@
 #include "render/sensors/perspective.h"
 #include "spectral/wavelengths.h"
 #include "tests/support/error_of.h"
+#include "tests/support/one_emitter.h"
 #include "tests/support/image_mean.h"
 
 namespace iris {
 namespace {
 
 const SampledWavelengths kRGB = SampledWavelengths::rgb(defaultChannelWavelengths());
-
-LightPtr loadProjector(const std::string& params) {
-    SceneDescription d = loadSceneFromString("<scene version=\"3.0.0\"><emitter type=\"projector\">" + params + "</emitter></scene>", ".");
-    EXPECT_EQ(d.lights.size(), 1u);
-    return d.lights.at(0);
-}
 
 /// Irradiance L·cos θ that the projector (axis +z from the origin unless to_world says otherwise)
 /// delivers at p onto a surface facing it along −z, divided by π, in RGB channel c.
@@ -35,7 +30,7 @@ float irradianceOverPi(const Light& l, const vec3& p, int c = 1) {
 }
 
 TEST(Projector, AConstantImageGivesConstantIrradianceOnThePlaneZ1) {
-    const LightPtr l = loadProjector("<float name=\"fov\" value=\"90\"/><float name=\"irradiance\" value=\"0.8\"/><float name=\"scale\" value=\"2\"/>");
+    const LightPtr l = test::loadOneEmitter("projector", "<float name=\"fov\" value=\"90\"/><float name=\"irradiance\" value=\"0.8\"/><float name=\"scale\" value=\"2\"/>");
     for (const vec2 xy : {vec2(0.0f), vec2(0.9f, 0.0f), vec2(-0.7f, 0.6f), vec2(0.99f, -0.99f)})
         EXPECT_NEAR(irradianceOverPi(*l, vec3(xy, 1.0f)), 1.6f, 1e-5f) << xy.x << " " << xy.y;
     // Point-light falloff along a ray: at z = 3 a ninth of it.
@@ -57,7 +52,7 @@ TEST(Projector, SendsAlongEachCameraRayThePixelThatCameraSees) {
     writeEXR(path, img);
     const std::string frame = "<transform name=\"to_world\"><lookat origin=\"1, 2, 3\" target=\"1.5, 1, -2\" up=\"0, 1, 0\"/></transform>";
     for (const std::string fovAxis : {"x", "y", "diagonal"}) {
-        const LightPtr l = loadProjector("<float name=\"fov\" value=\"35\"/><string name=\"fov_axis\" value=\"" + fovAxis + "\"/>" + frame +
+        const LightPtr l = test::loadOneEmitter("projector", "<float name=\"fov\" value=\"35\"/><string name=\"fov_axis\" value=\"" + fovAxis + "\"/>" + frame +
                                          "<texture name=\"irradiance\" type=\"bitmap\"><string name=\"filename\" value=\"" + path +
                                          "\"/><string name=\"filter_type\" value=\"nearest\"/></texture>");
         const FovAxis axis = fovAxis == "x" ? FovAxis::X : fovAxis == "y" ? FovAxis::Y : FovAxis::Diagonal;
@@ -114,7 +109,7 @@ TEST(Projector, WrongProjectorsAreRefusedWithTheirLine) {
             loadSceneFromString("<scene version=\"3.0.0\">\n<emitter type=\"projector\">\n" + body + "</emitter></scene>", ".");
         });
     };
-    const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
+    const auto has = test::contains;
     const std::string missing = err("<float name=\"fov\" value=\"40\"/>\n");
     EXPECT_TRUE(has(missing, "<string>:2:") && has(missing, "irradiance")) << missing;
     const std::string scale = err("<float name=\"irradiance\" value=\"1\"/>\n<float name=\"scale\" value=\"-2\"/>\n");

@@ -12,18 +12,12 @@
 #include "render/loader/scene_loader.h"
 #include "spectral/wavelengths.h"
 #include "tests/support/error_of.h"
+#include "tests/support/one_emitter.h"
 
 namespace iris {
 namespace {
 
 const SampledWavelengths kRGB = SampledWavelengths::rgb(defaultChannelWavelengths());
-
-/// The spot of a one-emitter scene (axis +z from the origin unless `transform` says otherwise).
-LightPtr loadSpot(const std::string& params) {
-    SceneDescription d = loadSceneFromString("<scene version=\"3.0.0\"><emitter type=\"spot\">" + params + "</emitter></scene>", ".");
-    EXPECT_EQ(d.lights.size(), 1u);
-    return d.lights.at(0);
-}
 
 /// The radiance the spot sends to the point at angle θ (radians) from its axis, distance 2, in the
 /// x–z plane rotated by φ about the axis; times d² it is the intensity in that direction.
@@ -35,7 +29,7 @@ float intensityAt(const Light& l, float theta, float phi = 0.0f, int channel = 1
 
 TEST(SpotLight, FalloffIsLinearInTheAngleAsMitsubas) {
     // cutoff 30°, beam 10°: 1 within 10°, 0 beyond 30°, (30° − θ)/20° between.
-    const LightPtr spot = loadSpot("<float name=\"intensity\" value=\"3\"/><float name=\"cutoff_angle\" value=\"30\"/>"
+    const LightPtr spot = test::loadOneEmitter("spot", "<float name=\"intensity\" value=\"3\"/><float name=\"cutoff_angle\" value=\"30\"/>"
                                    "<float name=\"beam_width\" value=\"10\"/>");
     const float deg = kPi / 180.0f;
     EXPECT_NEAR(intensityAt(*spot, 0.0f), 3.0f, 1e-5f);
@@ -47,7 +41,7 @@ TEST(SpotLight, FalloffIsLinearInTheAngleAsMitsubas) {
     // pbrt's smoothstep in cos θ would give 0.5036 × 3 midway at 20°, the linear ramp 0.5 × 3; and
     // Mitsuba's default beam_width is ¾ of the cutoff.
     EXPECT_GT(std::abs(intensityAt(*spot, 20.0f * deg) - 3.0f * 0.5036f), 5e-3f);
-    const LightPtr def = loadSpot("<float name=\"cutoff_angle\" value=\"40\"/>");
+    const LightPtr def = test::loadOneEmitter("spot", "<float name=\"cutoff_angle\" value=\"40\"/>");
     EXPECT_NEAR(intensityAt(*def, 29.0f * deg), 1.0f, 1e-5f);
     EXPECT_NEAR(intensityAt(*def, 35.0f * deg), 0.5f, 2e-4f);
 }
@@ -56,7 +50,7 @@ TEST(SpotLight, TextureIsProjectedAlongTheAxis) {
     // A 2 × 2 checkerboard over uv: with cutoff 45° (tan = 1) the direction (x, y, z) looks up
     // uv = ½ + ½ (x/z, y/z). Mitsuba 3's spectrum checkerboard: color0 where frac(u) and frac(v)
     // are both ≤ ½ or both > ½.
-    const LightPtr spot = loadSpot(
+    const LightPtr spot = test::loadOneEmitter("spot",
         "<float name=\"cutoff_angle\" value=\"45\"/><float name=\"beam_width\" value=\"45\"/>"
         "<texture name=\"texture\" type=\"checkerboard\"><rgb name=\"color0\" value=\"0.8\"/><rgb name=\"color1\" value=\"0.2\"/></texture>");
     auto at = [&](float x, float y) {  // the point in direction (x, y, 1), distance |(x, y, 1)|
@@ -69,7 +63,7 @@ TEST(SpotLight, TextureIsProjectedAlongTheAxis) {
     EXPECT_NEAR(at(0.5f, -0.5f), 0.2f, 1e-5f);   // uv (0.75, 0.25)
     EXPECT_NEAR(at(-0.5f, 0.5f), 0.2f, 1e-5f);   // uv (0.25, 0.75)
     // The light's frame follows to_world: rotated 90° about its axis, (x, y) → (−y, x).
-    const LightPtr turned = loadSpot(
+    const LightPtr turned = test::loadOneEmitter("spot",
         "<float name=\"cutoff_angle\" value=\"45\"/><float name=\"beam_width\" value=\"45\"/>"
         "<texture name=\"texture\" type=\"checkerboard\"><rgb name=\"color0\" value=\"0.8\"/><rgb name=\"color1\" value=\"0.2\"/></texture>"
         "<transform name=\"to_world\"><rotate z=\"1\" angle=\"90\"/></transform>");
@@ -85,7 +79,7 @@ TEST(SpotLight, WrongSpotsAreRefusedWithTheirLine) {
             loadSceneFromString("<scene version=\"3.0.0\">\n<emitter type=\"spot\">\n" + body + "</emitter></scene>", ".");
         });
     };
-    const auto has = [](const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; };
+    const auto has = test::contains;
     const std::string constant = err("<rgb name=\"texture\" value=\"0.5\"/>\n");
     EXPECT_TRUE(has(constant, "<string>:3: spot: 'texture' must be spatially varying")) << constant;
     const std::string wide = err("<float name=\"cutoff_angle\" value=\"100\"/>\n<texture name=\"texture\" type=\"checkerboard\"/>\n");

@@ -18,4 +18,7 @@ std::string errorOf(F&& f) {
     return {};
 }
 
+/// Whether `part` occurs in the message `s`.
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
 }  // namespace iris::test
