@@ -6,6 +6,7 @@
 // a name registered twice in one registry stops the program at start-up.
 #pragma once
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -53,12 +54,21 @@ public:
 
     /// The one message for a type no plugin registered:
     /// "file:line: unknown <tag> type 'x' (supported: a, b, ...)[: advice]".
+    /// A type that differs from a plugin's name only in case (`Rectangle`) is named: Mitsuba loads
+    /// plugins from files named after the type (src/core/plugin.cpp), so such scenes load only
+    /// where the file system ignores case, and iris, like Mitsuba on Linux, refuses them.
     [[noreturn]] void failUnknownType(const Properties& props) const {
         std::string list;
         for (const auto& n : names()) list += (list.empty() ? "" : ", ") + n;
         const auto hint = hints_.find(props.type());
+        std::string lower = props.type();
+        for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+        const std::string caseHint = lower != props.type() && has(lower)
+            ? ": plugin names are lower case, write '" + lower + "' (Mitsuba finds '" + props.type() +
+                  "' only on a file system that ignores case)"
+            : std::string();
         failAt(props.location(), "unknown ", props.tag(), " type '", props.type(), "' (supported: ", list, ")",
-               hint == hints_.end() ? std::string() : ": " + hint->second);
+               hint == hints_.end() ? caseHint : ": " + hint->second);
     }
 
 private:

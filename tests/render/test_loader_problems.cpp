@@ -46,6 +46,10 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     EXPECT_TRUE(has(ptracer, "<string>:2: unknown integrator type 'ptracer'") && has(ptracer, "use 'path'")) << ptracer;
     EXPECT_TRUE(has(loadError("<shape type=\"sdfgrid\"/>\n"), "convert the grid to a mesh"));
     EXPECT_TRUE(has(loadError("<sensor type=\"thinlens\"/>\n"), "use 'perspective'"));
+    // A type in capitals (files written where the file system ignores case) names the plugin.
+    const std::string caps = loadError("<shape type=\"Rectangle\"/>\n");
+    EXPECT_TRUE(has(caps, "<string>:2: unknown shape type 'Rectangle'") && has(caps, "write 'rectangle'")) << caps;
+    EXPECT_FALSE(has(loadError("<shape type=\"Rectangel\"/>\n"), "lower case"));
     // mask and null are supported (materials/mask.cpp): a mask without its nested bsdf is refused
     // as Mitsuba refuses it, at the mask's line.
     const std::string mask = loadError("<shape type=\"sphere\">\n<bsdf type=\"mask\"/></shape>\n");
