@@ -39,7 +39,7 @@ std::string loadError(const std::string& body, const std::string& version = "3.0
     });
 }
 
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+const auto has = test::contains;
 
 }  // namespace
 

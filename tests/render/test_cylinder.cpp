@@ -263,9 +263,7 @@ TEST(CylinderLight, LightsAFloorAsATessellatedCylinderDoes) {
 }
 
 TEST(CylinderShape, WrongCylindersAreRefusedWithTheirLine) {
-    const auto err = [](const std::string& body) {
-        return test::errorOf([&] { loadSceneFromString("<scene version=\"3.0.0\">\n" + body + "</scene>", "."); });
-    };
+    const auto err = [](const std::string& body) { return test::sceneError(body); };
     const auto has = test::contains;
     const std::string r0 = err("<shape type=\"cylinder\">\n<float name=\"radius\" value=\"0\"/></shape>\n");
     EXPECT_TRUE(has(r0, "<string>:3: cylinder radius must be positive")) << r0;

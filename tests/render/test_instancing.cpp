@@ -368,11 +368,8 @@ TEST(Instancing, InstanceTransformCarriesTheInteraction) {
 
 // ---------------------------------------------------------------- wrong inputs
 
-std::string loadError(const std::string& body) {
-    return test::errorOf([&] { loadSceneFromString("<scene version=\"3.0.0\">\n" + body + "</scene>\n", "."); });
-}
-
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+std::string loadError(const std::string& body) { return test::sceneError(body); }
+const auto has = test::contains;
 
 TEST(Instancing, WrongInputsAreRefusedWithTheirLine) {
     const std::string noRef = loadError("<shape type=\"instance\"/>\n");

@@ -3,19 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "render/loader/scene_loader.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
 
 namespace {
-std::string loadError(const std::string& body, const std::string& version = "3.0.0") {
-    try {
-        loadSceneFromString("<scene version=\"" + version + "\">\n" + body + "</scene>\n", ".");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+std::string loadError(const std::string& body, const std::string& version = "3.0.0") { return test::sceneError(body, version); }
+const auto has = test::contains;
 }  // namespace
 
 TEST(LoaderProblems, EveryProblemOfAFileAtOnce) {

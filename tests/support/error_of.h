@@ -18,6 +18,10 @@ std::string errorOf(F&& f) {
     return {};
 }
 
+/// The error of loading a scene of format `version` whose body (the elements inside <scene>, from
+/// line 2 on) is `body` ("" when it loads).
+std::string sceneError(const std::string& body, const std::string& version = "3.0.0");
+
 /// Whether `part` occurs in the message `s`.
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
