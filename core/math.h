@@ -40,12 +40,12 @@ inline T lerp(float t, const T& a, const T& b) { return (1 - t) * a + t * b; }
 
 inline bool isFinite(const vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-/// Transform a point / direction / normal by a 4x4 affine matrix.
+/// Transform a point / direction by a 4x4 affine matrix.
 inline vec3 transformPoint(const mat4& m, const vec3& p) { return vec3(m * vec4(p, 1.0f)); }
 inline vec3 transformVector(const mat4& m, const vec3& v) { return mat3(m) * v; }
-inline vec3 transformNormal(const mat4& m, const vec3& n) {
-    return glm::transpose(glm::inverse(mat3(m))) * n;
-}
+/// The matrix that carries normals under the affine map m: the inverse transpose of its linear
+/// part, so that they stay perpendicular to transformed tangents (pbrt-v4 §3.10.3).
+inline mat3 normalMatrix(const mat4& m) { return glm::transpose(glm::inverse(mat3(m))); }
 
 /// The roots t0 ≤ t1 of a t² + 2 b t + c = 0 given its discriminant disc = b² − a c ≥ 0 (computed
 /// by the caller in a form that does not cancel), as q/a and c/q with q = −(b + sign(b)·√disc), which

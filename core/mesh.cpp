@@ -31,7 +31,7 @@ float MeshAttribute::at(const TriangleMesh& mesh, size_t tri, vec2 b, int c) con
 
 void TriangleMesh::transform(const mat4& m) {
     for (vec3& p : positions) p = transformPoint(m, p);
-    const mat3 nm = glm::transpose(glm::inverse(mat3(m)));
+    const mat3 nm = normalMatrix(m);
     for (vec3& n : normals) {
         n = nm * n;
         const float len = glm::length(n);

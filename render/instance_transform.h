@@ -12,7 +12,7 @@ namespace iris {
 struct InstanceTransform {
     mat4 toWorld{1.0f};
     mat4 toObject{1.0f};  // the inverse of toWorld
-    mat3 normalToWorld{1.0f};  // transpose(inverse(linear part of toWorld))
+    mat3 normalToWorld{1.0f};  // normalMatrix(toWorld)
 
     explicit InstanceTransform(const mat4& m);
     /// The world ray in the group's space (same t along it: the direction is not renormalised).

@@ -100,6 +100,11 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
     if (std::isfinite(G::hit(s, r))) r.tfar = -std::numeric_limits<float>::infinity();
 }
 
+void growBounds(vec3& lo, vec3& hi, const vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+}
+
 template <class G>
 RTCGeometry userGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo, vec3& hi) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -110,19 +115,14 @@ RTCGeometry userGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo, 
     rtcSetGeometryOccludedFunction(geom, userOccluded<G>);
     vec3 l, h;
     G::bounds(s, l, h);
-    lo = glm::min(lo, l);
-    hi = glm::max(hi, h);
+    growBounds(lo, hi, l);
+    growBounds(lo, hi, h);
     return geom;
 }
 
 void checkDevice(RTCDevice device, const char* what) {
     const RTCError err = rtcGetDeviceError(device);
     if (err != RTC_ERROR_NONE) fail("Embree error ", int(err), " while ", what);
-}
-
-void growBounds(vec3& lo, vec3& hi, const vec3& p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
 }
 
 /// The Embree geometry of one shape in its own space (world space for top-level shapes, the group's

@@ -3,8 +3,9 @@
 // Mitsuba 3's sample_position: φ and the axial position uniform); spheres by the cone of
 // directions they subtend (pbrt-v4 §6.2.4). The radiance may be a texture over the shape's uv
 // (Mitsuba's area emitter with a textured `radiance`), looked up at the hit's or the sampled
-// point's uv (and, on meshes, triangle and barycentrics, for `mesh_attribute`); sampling stays uniform by area (Mitsuba 3 importance-samples such a texture through
-// the shape's parametrisation: same expectation, other variance).
+// point's uv (and, on meshes, triangle and barycentrics, for `mesh_attribute`); sampling stays
+// uniform by area (Mitsuba 3 importance-samples such a texture through the shape's
+// parametrisation: same expectation, other variance).
 #pragma once
 
 #include <vector>
