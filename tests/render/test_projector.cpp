@@ -104,11 +104,7 @@ TEST(Projector, LightsADiffuseWallWithRhoTimesScaleTimesE) {
 }
 
 TEST(Projector, WrongProjectorsAreRefusedWithTheirLine) {
-    const auto err = [](const std::string& body) {
-        return test::errorOf([&] {
-            loadSceneFromString("<scene version=\"3.0.0\">\n<emitter type=\"projector\">\n" + body + "</emitter></scene>", ".");
-        });
-    };
+    const auto err = [](const std::string& body) { return test::sceneError("<emitter type=\"projector\">\n" + body + "</emitter>"); };
     const auto has = test::contains;
     const std::string missing = err("<float name=\"fov\" value=\"40\"/>\n");
     EXPECT_TRUE(has(missing, "<string>:2:") && has(missing, "irradiance")) << missing;

@@ -74,11 +74,7 @@ TEST(SpotLight, TextureIsProjectedAlongTheAxis) {
 }
 
 TEST(SpotLight, WrongSpotsAreRefusedWithTheirLine) {
-    const auto err = [](const std::string& body) {
-        return test::errorOf([&] {
-            loadSceneFromString("<scene version=\"3.0.0\">\n<emitter type=\"spot\">\n" + body + "</emitter></scene>", ".");
-        });
-    };
+    const auto err = [](const std::string& body) { return test::sceneError("<emitter type=\"spot\">\n" + body + "</emitter>"); };
     const auto has = test::contains;
     const std::string constant = err("<rgb name=\"texture\" value=\"0.5\"/>\n");
     EXPECT_TRUE(has(constant, "<string>:3: spot: 'texture' must be spatially varying")) << constant;
