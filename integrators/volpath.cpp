@@ -4,8 +4,10 @@
 // Both follow the null-scattering path integral (Miller, Georgiev & Jarosz 2019, "A
 // Null-Scattering Path Integral Formulation of Light Transport", SIGGRAPH; the estimator layout of
 // pbrt-v4 §14.2, VolPathIntegrator): free-flight distances are sampled against each medium's
-// majorant σ_maj for one *sampling lane* h of the path's wavelengths (delta tracking with
-// absorption, real scattering and null scattering chosen by σ_a, σ_s, σ_n over σ_maj in lane h);
+// majorant σ_maj for one *sampling lane* h of the path's wavelengths (delta tracking: a real or a
+// null collision chosen by σ_t and σ_n over σ_maj in lane h; at a real collision the path always
+// scatters, weighted per lane by σ_s/σ_t — absorption is a weight, not an event, as in Mitsuba 3's
+// volpath, so that a lane whose albedo is 0 where another's is not never ends the other lanes);
 // shadow rays estimate transmittance by ratio tracking. Every lane k carries, besides the
 // throughput β = f/p_h, the ratio r_u[k] = p_k/p_h of the pdf the path would have had if lane k
 // had been sampled (and r_l[k] for the light-sampling strategy of the last vertex). A contribution
@@ -24,10 +26,17 @@
 //
 // Mitsuba 3's conventions (src/integrators/volpath.cpp): depth counts real scattering events on
 // surfaces and in media, not null-BSDF boundary crossings; a path stops when depth reaches
-// max_depth; emitter sampling needs depth + 1 < max_depth; a shape with an interior or exterior
+// max_depth; emitter sampling at a surface needs depth + 1 < max_depth (depth before this
+// bounce), in a medium depth < max_depth (depth after this scattering event), so that both allow
+// max_depth − 1 scattering vertices with next-event estimation; a shape with an interior or exterior
 // medium is a medium transition: the ray's medium becomes the exterior one when it leaves along
-// the geometric normal, the interior one otherwise. Shadow rays pass through `null` surfaces only
-// (any other surface blocks them). Media do not emit.
+// the geometric normal, the interior one otherwise. A sampled pass-through lobe (kBSDFNull: `null`,
+// the transparent part of `mask`, the transmission of `thindielectric`) is no bounce either: depth,
+// the last scattering vertex and its pdf stay as they were (volpath.cpp: non_null_bsdf). Shadow rays
+// cross surfaces whose BSDF has a pass-through lobe with its weight (BSDF::nullTransmission, Mitsuba
+// 3's eval_null_transmission in sample_emitter); any other surface blocks them. Mitsuba 0.6 differs:
+// its volpath counts a null crossing as an interaction on the path and on shadow rays
+// (docs/media.md). Media do not emit.
 #include "core/error.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
@@ -55,6 +64,18 @@ const Medium* mediumAfter(const Scene& scene, const SurfaceInteraction& si, cons
     const ShapeDescription& s = scene.shape(si.shapeIndex);
     if (!s.interior && !s.exterior) return current;
     return glm::dot(d, si.ng) > 0 ? s.exterior.get() : s.interior.get();
+}
+
+/// The weight a shadow ray along `dir` keeps when it crosses surface si (Mitsuba 3 volpath.cpp
+/// sample_emitter: eval_null_transmission at the hit), or nullopt when the surface blocks it.
+std::optional<SampledSpectrum> crossingWeight(const SurfaceInteraction& si, const vec3& dir, const SampledWavelengths& wl,
+                                              Arena& arena) {
+    if (!si.material->transmitsShadowRays()) return std::nullopt;
+    const ShadingPoint sp = shadingPointAt(si);
+    SampledWavelengths own = wl;  // a nested dispersive BSDF may end lanes: of this query, not of the path
+    const BSDF* bsdf = si.material->getBSDF(sp, own, arena);
+    if (!bsdf) return SampledSpectrum(wl.size(), 1.0f);  // a boundary only
+    return bsdf->nullTransmission(sp.shading.toLocal(-dir));
 }
 
 /// Per-path random numbers for the variable number of tracking steps: a generator seeded from two
@@ -212,16 +233,12 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
             const float sMaj = seg.sigmaMaj[h];
             const vec3 p = ray.at(t);
             const MediumCoefficients c = ps.medium->coefficients(p, wl);
-            const float pAbsorb = (c.sigmaT[h] - c.sigmaS[h]) / sMaj, pScatter = c.sigmaS[h] / sMaj;
-            const float u = rng.uniform();
-            if (u < pAbsorb) {  // absorption ends the path (media do not emit)
-                ps.terminated = true;
-                return false;
-            }
-            if (u < pAbsorb + pScatter) {  // real scattering: pdf T_maj σ_s in lane h
-                const float pdf = tm[h] * c.sigmaS[h];
+            if (rng.uniform() < c.sigmaT[h] / sMaj) {
+                // A real collision, pdf T_maj σ_t in lane h: scattering with the path's weight times
+                // T_maj σ_s (the albedo; Mitsuba 3 volpath.cpp, weight_scatter · σ_s).
+                const float pdf = tm[h] * c.sigmaT[h];
                 ps.beta *= tm * c.sigmaS / pdf;
-                ps.rU *= tm * c.sigmaS / pdf;
+                ps.rU *= tm * c.sigmaT / pdf;
                 if (ps.beta.isBlack() || ps.rU.isBlack()) return ps.terminated = true, false;
                 scattered = scatterInMedium(scene, p, ray, h, ps, wl, sampler, rng, arena, stats);
                 return false;
@@ -248,10 +265,13 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
 
 bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState& ps,
                                         SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
+    // This event is scattering number depth (counted before the check, Mitsuba 3 volpath.cpp
+    // `depth += 1; active &= depth < max_depth`), so next-event estimation here is allowed whenever
+    // the path goes on, like a surface's at depth + 1 < max_depth before its own increment.
     if (++ps.depth >= maxDepth_) return ps.terminated = true, false;
     const PhaseFunction& phase = ps.medium->phase();
     const vec3 wo = -ray.d;
-    if (ps.medium->sampleEmitters() && !scene.lights().empty() && ps.depth + 1 < maxDepth_) {
+    if (ps.medium->sampleEmitters() && !scene.lights().empty()) {
         ps.L += sampleLight(scene, p, nullptr, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wi, float& pdf) {
             pdf = phase.pdf(wo, wi);
             return SampledSpectrum(wl.size(), phase.eval(wo, wi));
@@ -384,7 +404,11 @@ SampledSpectrum VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 
     for (int crossings = 0; crossings < 1000; ++crossings) {
         ++stats.rays;
         const std::optional<SurfaceInteraction> hit = scene.intersect(Ray(o, dir, dist));
-        if (hit && !hit->material->isPassThrough()) return SampledSpectrum(wl.size(), 0.0f);
+        if (hit) {
+            const std::optional<SampledSpectrum> w = crossingWeight(*hit, dir, wl, arena);
+            if (!w || w->isBlack()) return SampledSpectrum(wl.size(), 0.0f);
+            T *= *w;
+        }
         const float tEnd = hit ? hit->t : dist;
         if (medium) {
             // Ratio tracking (Novák et al. 2014), collisions ∝ σ_maj in lane h.

@@ -27,8 +27,10 @@ enum BSDFFlags : uint32_t {
     kBSDFDiffuse = 1u << 2,
     kBSDFGlossy = 1u << 3,
     kBSDFSpecular = 1u << 4,
-    /// Pass-through (Mitsuba's Null lobe, of the `mask` and `null` bsdfs): wi = −wo, the ray goes
-    /// on unchanged. Sampled together with kBSDFTransmission | kBSDFSpecular (a delta lobe).
+    /// Pass-through (Mitsuba's Null lobe, of the `mask`, `null` and `thindielectric` bsdfs): wi = −wo,
+    /// the ray goes on unchanged. Sampled together with kBSDFTransmission | kBSDFSpecular (a delta
+    /// lobe). The volumetric integrators do not count it as a bounce and let shadow rays cross it
+    /// with BSDF::nullTransmission (integrators/volpath.cpp).
     kBSDFNull = 1u << 5,
 };
 
@@ -62,6 +64,11 @@ public:
     }
     /// True if next-event estimation can contribute (some non-delta lobe exists).
     bool hasNonSpecular() const { return flags() & (kBSDFDiffuse | kBSDFGlossy); }
+
+    /// The weight a shadow ray keeps when it crosses the surface unchanged, arriving from wo (Mitsuba
+    /// 3 BSDF::eval_null_transmission, also Mitsuba 0.6's eval of the ENull component): the
+    /// coefficient of the pass-through lobe; nullopt for a BSDF without one (it blocks shadow rays).
+    virtual std::optional<SampledSpectrum> nullTransmission(const vec3& wo) const { return (void)wo, std::nullopt; }
 
 protected:
     // BSDFs live in the Arena and are never destroyed: the destructor is trivial and non-virtual.

@@ -11,8 +11,11 @@
 // The pass-through sample has flags kBSDFNull | kBSDFTransmission | kBSDFSpecular: a delta lobe
 // (no next-event estimation through it, the emitter it reaches is counted with MIS weight 1) that
 // the path integrator counts as a path segment like any other (Mitsuba 3, src/integrators/path.cpp:
-// depth grows at every valid intersection), and shadow rays stop at the surface whatever its
-// opacity (Mitsuba 3's Scene::ray_test is a plain occlusion test).
+// depth grows at every valid intersection), and its shadow rays stop at the surface whatever its
+// opacity (Mitsuba 3's Scene::ray_test is a plain occlusion test). The volumetric integrators do
+// not count the pass-through as a bounce and their shadow rays cross the surface with the weight
+// 1 − opacity · (1 − the nested BSDF's own pass-through weight) (Mitsuba 3 mask.cpp,
+// eval_null_transmission; `null`: 1).
 //
 // Version split (docs/scene_format.md, "Version-dependent defaults"):
 //   * 2.x/3.x (Mitsuba 3): opacity is a scalar (a float texture, clamped to [0, 1] when looked
@@ -82,6 +85,11 @@ public:
         return passThrough(wo, 1.0f - opacity_, 1.0f - prob_);
     }
     uint32_t flags() const override { return (nested_ ? nested_->flags() : 0u) | kNullLobe; }
+    std::optional<SampledSpectrum> nullTransmission(const vec3& wo) const override {
+        const SampledSpectrum one(opacity_.size(), 1.0f);
+        const SampledSpectrum nested = (nested_ ? nested_->nullTransmission(wo) : std::nullopt).value_or(SampledSpectrum(opacity_.size()));
+        return one - opacity_ * (one - nested);  // Mitsuba 3 mask.cpp eval_null_transmission
+    }
 
 private:
     const BSDF* nested_;
@@ -99,6 +107,7 @@ public:
         return passThrough(wo, SampledSpectrum(n_, 1.0f), 1.0f);
     }
     uint32_t flags() const override { return kNullLobe; }
+    std::optional<SampledSpectrum> nullTransmission(const vec3&) const override { return SampledSpectrum(n_, 1.0f); }
 
 private:
     int n_;
@@ -124,6 +133,7 @@ public:
         return arena.make<MaskBSDF>(nested, o, std::clamp(sum / float(o.size()), 0.0f, 1.0f), false);
     }
     Frame shadingFrame(const ShadingPoint& sp) const override { return nested_->shadingFrame(sp); }
+    bool transmitsShadowRays() const override { return true; }
 
 private:
     FloatTexturePtr opacity_;
@@ -136,7 +146,7 @@ public:
     const BSDF* getBSDF(const ShadingPoint&, SampledWavelengths& wl, Arena& arena) const override {
         return arena.make<NullBSDF>(wl.size());
     }
-    bool isPassThrough() const override { return true; }
+    bool transmitsShadowRays() const override { return true; }
 };
 
 std::shared_ptr<Material> nestedMaterial(const Properties& child) {

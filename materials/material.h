@@ -41,9 +41,10 @@ public:
     /// material hands it each frame it may use.
     virtual bool perturbsShading() const { return false; }
 
-    /// True for a surface that only passes light through unchanged (the `null` bsdf): shadow rays
-    /// of the volumetric integrators cross it (integrators/volpath.cpp).
-    virtual bool isPassThrough() const { return false; }
+    /// True when the material's BSDFs may let shadow rays through (a pass-through lobe with
+    /// BSDF::nullTransmission: `null`, `mask`, `thindielectric`); the volumetric integrators build
+    /// the BSDF of such a surface on a shadow ray and stop at any other (integrators/volpath.cpp).
+    virtual bool transmitsShadowRays() const { return false; }
 };
 
 /// Where a surface hit looks up textures: uv, position and, on meshes, the triangle and barycentrics

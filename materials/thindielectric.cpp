@@ -6,6 +6,12 @@
 // specular_reflectance, specular_transmittance (1).
 // The lobe is chosen with the mean of R' over the wavelengths; no wavelength termination is
 // needed since directions do not depend on η.
+// The transmission is a pass-through lobe (kBSDFNull), as in Mitsuba 3 (thindielectric.cpp: its
+// second component is BSDFFlags::Null, sampled_type Null, eval_null_transmission = 1 − R') and
+// Mitsuba 0.6 (ENull): the volumetric integrators do not count it as a bounce and their shadow rays
+// cross it with weight (1 − R')·specular_transmittance (nullTransmission). The `path` integrator
+// treats it like any delta lobe (Mitsuba 3 path.cpp: every intersection is a bounce, and shadow rays
+// are plain occlusion tests).
 #include "core/registry.h"
 #include "materials/fresnel.h"
 #include "materials/material.h"
@@ -24,11 +30,7 @@ public:
     float pdf(const vec3&, const vec3&, TransportMode) const override { return 0.0f; }
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2&, TransportMode) const override {
         if (wo.z == 0) return std::nullopt;
-        SampledSpectrum R = fresnelDielectric(std::abs(wo.z), eta_);
-        for (int i = 0; i < R.size(); ++i) {
-            const float r = R[i], t = 1.0f - r;
-            R[i] = r < 1.0f ? r + t * t * r / (1.0f - r * r) : 1.0f;  // R' = R + T²R/(1 − R²)
-        }
+        const SampledSpectrum R = slabReflectance(wo);
         const float pR = std::clamp(R.average(), 0.0f, 1.0f);
         BSDFSample s;
         if (uc < pR) {
@@ -40,13 +42,26 @@ public:
             s.wi = -wo;
             s.pdf = 1.0f - pR;
             s.f = (1.0f - R) * t_ / std::abs(wo.z);
-            s.flags = kBSDFTransmission | kBSDFSpecular;
+            s.flags = kBSDFNull | kBSDFTransmission | kBSDFSpecular;
         }
         return s;
     }
-    uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFSpecular; }
+    uint32_t flags() const override { return kBSDFReflection | kBSDFNull | kBSDFTransmission | kBSDFSpecular; }
+    std::optional<SampledSpectrum> nullTransmission(const vec3& wo) const override {
+        return (1.0f - slabReflectance(wo)) * t_;  // Mitsuba 3 eval_null_transmission: 1 − R'
+    }
 
 private:
+    /// R' = R + T²R/(1 − R²), the slab's reflectance with every internal bounce (R at |cos θo|).
+    SampledSpectrum slabReflectance(const vec3& wo) const {
+        SampledSpectrum R = fresnelDielectric(std::abs(wo.z), eta_);
+        for (int i = 0; i < R.size(); ++i) {
+            const float r = R[i], t = 1.0f - r;
+            R[i] = r < 1.0f ? r + t * t * r / (1.0f - r * r) : 1.0f;
+        }
+        return R;
+    }
+
     SampledSpectrum eta_, r_, t_;
 };
 
@@ -58,6 +73,7 @@ public:
         const SampledSpectrum eta = in_.sample(wl) / ext_.sample(wl);
         return arena.make<ThinDielectricBSDF>(eta, r_->eval(sp.tex, wl), t_->eval(sp.tex, wl));
     }
+    bool transmitsShadowRays() const override { return true; }
 
 private:
     IOR in_, ext_;

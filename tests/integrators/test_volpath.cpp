@@ -121,6 +121,22 @@ TEST(VolPath, FurnaceKeepsRadianceWithChromaticMediaInBothModes) {
     }
 }
 
+TEST(VolPath, ALaneWithZeroAlbedoDoesNotEndTheOthers) {
+    // Albedo (1, 0, 0) under a uniform environment: red is a furnace (radiance 1), green and blue a
+    // pure absorber, e^{−2σ} along the axis. Absorption must be a per-lane weight, not an event
+    // chosen in the sampling lane: choosing it in a lane of albedo 0 would end red's scattering
+    // too (red then came out (1 + 2e^{−2})/3 ≈ 0.42).
+    const std::string medium = R"(<medium type="homogeneous" id="m"><float name="sigma_t" value="1"/>
+  <rgb name="albedo" value="1, 0, 0"/></medium>
+)";
+    for (const char* integ : kIntegrators) {
+        const Film f = render(scene(integ, kConstant + medium + mediumSphere("m")), {true, 512, 19});
+        const Mean red = imageMean(f, 0), green = imageMean(f, 1);
+        EXPECT_NEAR(red.mean, 1.0, 5 * red.stderr_ + 2e-3) << integ;
+        EXPECT_NEAR(green.mean, std::exp(-2.0), 5 * green.stderr_ + 1e-3) << integ;
+    }
+}
+
 TEST(VolPath, SensorInsideAMedium) {
     // The camera at the centre of a null sphere of radius 1 filled with an absorbing medium: every
     // ray crosses 1 unit, e^{−σ}.
