@@ -123,7 +123,10 @@ float AreaLight::pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* 
     }
     const float cosL = std::abs(glm::dot(hit->ng, wi));
     if (cosL <= 1e-8f) return 0.0f;
-    return hit->t * hit->t / (cosL * area_);
+    // The distance from p, not the hit's ray parameter: the ray that found the light may have
+    // started at a pass-through surface between p and the light (integrators/volpath.cpp).
+    const vec3 d = hit->p - p;
+    return glm::dot(d, d) / (cosL * area_);
 }
 
 }  // namespace iris

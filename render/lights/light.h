@@ -44,7 +44,9 @@ public:
     virtual std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const = 0;
 
     /// Solid-angle density with which sampleLi would produce direction wi from p. For area lights
-    /// `hit` is the intersection with this light; for infinite lights hit is unused.
+    /// `hit` is the intersection with this light along wi from p (found by a ray that may have
+    /// started elsewhere on that line, e.g. after a pass-through surface); for infinite lights hit
+    /// is unused.
     virtual float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const { return 0.0f; }
 
     /// Emitted radiance: area lights at a surface point (`at`: position, uv and, on meshes, the

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "tests/support/image_mean.h"
+#include "tests/support/polygon_irradiance.h"
 
 using namespace iris;
 
@@ -26,18 +27,18 @@ double slabReflectance(double eta) {
     return 2 * r / (1 + r);
 }
 
-/// A camera at height 5 looking straight down at the origin (fov 0.5°), integrator `integ` with
-/// `maxDepth`, and `body`.
-std::string scene(const std::string& integ, int maxDepth, const std::string& body) {
+/// A camera at height camZ (default 5) looking straight down at the origin (fov 0.5°), integrator
+/// `integ` with `maxDepth`, and `body`.
+std::string scene(const std::string& integ, int maxDepth, const std::string& body, float camZ = 5.0f) {
     char head[1200];
     std::snprintf(head, sizeof head, R"(<scene version="3.0.0">
   <integrator type="%s"><integer name="max_depth" value="%d"/></integrator>
   <sensor type="perspective"><float name="fov" value="0.5"/>
-    <transform name="to_world"><lookat origin="0 0 5" target="0 0 0" up="0 1 0"/></transform>
+    <transform name="to_world"><lookat origin="0 0 %g" target="0 0 0" up="0 1 0"/></transform>
     <film type="hdrfilm"><integer name="width" value="%d"/><integer name="height" value="%d"/>
       <rfilter type="box"/></film></sensor>
 )",
-                  integ.c_str(), maxDepth, kRes, kRes);
+                  integ.c_str(), maxDepth, camZ, kRes, kRes);
     return head + body + "</scene>";
 }
 
@@ -136,4 +137,24 @@ TEST(VolPathNullSurfaces, PathStillCountsTheSheetAndBlocksShadowRays) {
     EXPECT_EQ(test::imageMean(seen, 1).mean, 0.0);
     const Film lit = render(scene("path", 2, sheet(1.0f, kThinGlass) + kLitFloor), true, 64, 17);
     EXPECT_EQ(test::imageMean(lit, 1).mean, 0.0);
+}
+
+TEST(VolPathNullSurfaces, AreaLightSeenThroughANullSheetKeepsMISConsistent) {
+    // A floor (ρ = 0.8) lit by a square light (half-size 1, radiance 3, height 2) through a `null`
+    // sheet at height 1: next-event estimation and BSDF sampling meet at the light, the latter
+    // after crossing the sheet. Direct illumination must be Lambert's polygon irradiance ρ/π · E;
+    // it was ~3 % high while the light's pdf was taken from the crossing instead of the floor.
+    const std::string light = R"(<shape type="rectangle"><boolean name="flip_normals" value="true"/>
+  <transform name="to_world"><translate z="2"/></transform>
+  <emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter></shape>
+<shape type="rectangle"><transform name="to_world"><scale value="100"/></transform>
+  <bsdf type="diffuse"><float name="reflectance" value="0.8"/></bsdf></shape>
+)";
+    const double expected = 0.8 / M_PI * test::squareLightIrradiance(1.0f, 2.0f, 3.0f);
+    for (const char* integ : kIntegrators) {
+        // The camera below the sheet (the light would hide the floor from above).
+        const Film f = render(scene(integ, 2, sheet(1.0f, R"(<bsdf type="null"/>)") + light, 0.5f), true, 4096, 25);
+        const test::ImageMean m = test::imageMean(f, 1);
+        EXPECT_NEAR(m.mean, expected, 5 * m.stderr_ + 1e-4) << integ;
+    }
 }

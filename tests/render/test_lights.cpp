@@ -8,6 +8,7 @@
 #include "render/renderer.h"
 #include "core/rng.h"
 #include "render/scene.h"
+#include "tests/support/polygon_irradiance.h"
 #include "tests/support/render_test_scenes.h"
 #include "spectral/spectrum_factory.h"
 
@@ -102,19 +103,42 @@ TEST(Lights, RectangleLightIrradianceIsAnalytic) {
     light.material = makeDiffuse(0.0f);
     d.shapes.push_back(light);
     const Scene scene(std::move(d));
-    // Lambert: E = (L/2) Σ β_i (n · u_i), u_i the unit normal of the plane through the receiver
-    // and edge i, β_i the angle the edge subtends (Arvo 1994, "The Irradiance Jacobian").
-    const vec3 corners[4] = {{-a, -a, h}, {a, -a, h}, {a, a, h}, {-a, a, h}};
-    double E = 0;
-    for (int i = 0; i < 4; ++i) {
-        const vec3 v0 = glm::normalize(corners[i]), v1 = glm::normalize(corners[(i + 1) % 4]);
-        const double beta = std::acos(std::clamp(double(glm::dot(v0, v1)), -1.0, 1.0));
-        const vec3 u = glm::normalize(glm::cross(v0, v1));
-        E += 0.5 * L * beta * std::abs(u.z);
-    }
+    const double E = test::squareLightIrradiance(a, h, L);
     double se;
     const double m = meanY(scene, true, 256, 9, &se);
     EXPECT_NEAR(m, 0.8 / kPi * E, 5 * se + 1e-4);
+}
+
+TEST(Lights, AreaLightPdfIsMeasuredFromTheReferencePoint) {
+    // pdfLi(p, wi, hit) must equal sampleLi's pdf for the same direction even when the ray that
+    // found the light started between p and the light (after a pass-through surface): it once used
+    // the hit's ray parameter as the distance, which made MIS weigh such hits too much.
+    SceneDescription d = floorScene(0.5f);
+    ShapeDescription rect;
+    rect.mesh = std::make_shared<TriangleMesh>(makeRectangle());
+    rect.mesh->flipNormals();
+    rect.mesh->transform(glm::translate(mat4(1.0f), vec3(0, 0, 3)));
+    rect.emission = std::make_shared<ConstantSpectrum>(1.0f, SpectrumKind::Illuminant);
+    d.shapes.push_back(rect);
+    const Scene scene(std::move(d));
+    ASSERT_EQ(scene.lights().size(), 1u);
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.5f, 4);
+    Pcg32 rng(5, 1);
+    int checked = 0;
+    for (int i = 0; i < 64; ++i) {
+        const vec3 p(0.3f, -0.2f, 0.5f);
+        const auto ls = light.sampleLi(p, vec2(rng.uniform(), rng.uniform()), wl);
+        if (!ls) continue;
+        const float dist = glm::length(ls->pLight - p);
+        for (const float start : {0.0f, 0.4f, 0.9f}) {  // where along p → light the ray began
+            const auto hit = scene.intersect(Ray(p + start * dist * ls->wi, ls->wi));
+            ASSERT_TRUE(hit && hit->areaLight == &light);
+            EXPECT_NEAR(light.pdfLi(p, ls->wi, &*hit), ls->pdf, 1e-3f * ls->pdf) << "start " << start;
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 50);
 }
 
 TEST(Lights, PointAndDirectionalLightsAreAnalytic) {
