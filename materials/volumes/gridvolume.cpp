@@ -15,10 +15,15 @@
 //  - Wrap modes act on voxel indices (Dr.Jit Texture::wrap): clamp to [0, n−1]; repeat modulo n;
 //    mirror with period 2n, the edge voxel repeated (…, 1, 0 | 0, 1, …, n−1 | n−1, …).
 //  - 1-channel grids give the value in every lane; 3-channel grids are RGB. In RGB mode the
-//    channels are returned as they are; in spectral mode the trilinearly interpolated colour is
-//    upsampled with the SpectrumKind of the parameter (RGBSpectrumGrid, spectral/rgb_spectrum_grid.h).
-//    Mitsuba 3 instead interpolates the voxels' sigmoid coefficients and 2·max scales
-//    (grid.cpp, interpolate_spectral); the two agree at voxel centres up to the fits' accuracy.
+//    channels are returned as they are. In spectral mode each voxel's colour becomes a spectrum as
+//    in Mitsuba 3 (grid.cpp, at load and in interpolate_spectral), whatever the parameter's kind:
+//    scale = 2·max(rgb), the reflectance spectrum S of rgb/scale (a colour of maximum ½), and a
+//    lookup is (Σ w_i S_i(λ)) · (Σ w_i scale_i) over the 8 trilinear corners (nearest: scale·S).
+//    This is not the reflectance upsampling of the interpolated colour: both project onto the
+//    same colour, but their shapes differ, and an albedo raised to the power of many scattering
+//    events shows it (Mitsuba's hetero_sigmat_albedo test scene: X 0.985, Z 1.012 before). S comes
+//    from RGBSpectrumGrid (spectral/rgb_spectrum_grid.h); the spectrum may exceed the colour's
+//    maximum (an albedo above 1 at some wavelengths), as in Mitsuba 3.
 //    raw = true makes Mitsuba 3's spectral variants refuse a 3-channel grid; iris upsamples it
 //    anyway (raw has no effect in RGB mode in both). Other channel counts are refused at load.
 #include <algorithm>
@@ -64,25 +69,27 @@ int64_t floorIndex(float x) { return int64_t(std::floor(std::clamp(x, -1.0995116
 
 class GridVolume final : public Volume {
 public:
-    GridVolume(VolumeGridData data, const mat4& toWorld, Filter filter, Wrap wrap, SpectrumKind kind)
-        : Volume(toWorld), g_(std::move(data)), filter_(filter), wrap_(wrap), kind_(kind) {
+    GridVolume(VolumeGridData data, const mat4& toWorld, Filter filter, Wrap wrap)
+        : Volume(toWorld), g_(std::move(data)), filter_(filter), wrap_(wrap) {
         range_.min = range_.max = g_.values.empty() ? 0.0f : g_.values[0];
         for (float v : g_.values) range_.min = std::min(range_.min, v), range_.max = std::max(range_.max, v);
         maxValue_ = laneBound(range_.max);
+        if (g_.channels == 3) scaleColours();
     }
 
     SampledSpectrum eval(const vec3& p, const SampledWavelengths& wl) const override {
         const vec3 u = localPoint(p);
-        float c[3] = {0.0f, 0.0f, 0.0f};
-        if (filter_ == Filter::Nearest) nearest(u, c);
-        else trilinear(u, c);
-        if (g_.channels == 1) return SampledSpectrum(wl.size(), c[0]);
-        if (wl.isRGB()) {
-            SampledSpectrum s(3);
-            for (int i = 0; i < 3; ++i) s[i] = c[i];
-            return s;
+        Corners k;
+        if (filter_ == Filter::Nearest) nearest(u, k);
+        else trilinear(u, k);
+        if (g_.channels == 3 && !wl.isRGB()) return spectrum(k, wl);
+        SampledSpectrum s(wl.size());
+        for (int i = 0; i < k.count; ++i) {
+            if (g_.channels == 1) s += SampledSpectrum(wl.size(), k.weight[i] * g_.values[k.voxel[i]]);
+            else
+                for (int c = 0; c < 3; ++c) s[c] += k.weight[i] * g_.values[k.voxel[i] * 3 + size_t(c)];
         }
-        return RGBSpectrumGrid::instance().sample(vec3(c[0], c[1], c[2]), kind_, wl);
+        return s;
     }
 
     float maxValue() const override { return maxValue_; }
@@ -103,12 +110,41 @@ public:
     ivec3 resolution() const override { return ivec3(g_.xres, g_.yres, g_.zres); }
 
 private:
+    /// The voxels a lookup blends (linear indices) and their weights.
+    struct Corners {
+        size_t voxel[8];
+        float weight[8];
+        int count = 0;
+    };
+
     /// A bound over every lane of the values eval makes from colours whose channels are at most m:
-    /// a scalar is m; RGB mode gives the channels; spectral Unbounded upsampling is m·s(rgb/m)
-    /// with s in [0,1] (spectral/rgb_spectrum.h); Reflectance upsampling lies in [0,1].
-    float laneBound(float m) const {
-        if (g_.channels == 3 && kind_ == SpectrumKind::Reflectance && m > 0.0f) return std::max(m, 1.0f);
-        return m;
+    /// a scalar is m; RGB mode gives the channels; spectral mode Σ w S · Σ w scale ≤ 1 · 2m.
+    float laneBound(float m) const { return g_.channels == 3 ? 2.0f * m : m; }
+
+    /// Per voxel the colour rgb/scale and scale = 2·max(rgb) (Mitsuba 3 grid.cpp, the constructor's
+    /// spectral conversion; 1e-8 keeps black voxels finite).
+    void scaleColours() {
+        const size_t n = g_.values.size() / 3;
+        scaled_.resize(4 * n);
+        for (size_t i = 0; i < n; ++i) {
+            const float* rgb = &g_.values[3 * i];
+            const float scale = 2.0f * std::max({rgb[0], rgb[1], rgb[2]});
+            for (int c = 0; c < 3; ++c) scaled_[4 * i + c] = rgb[c] / std::max(1e-8f, scale);
+            scaled_[4 * i + 3] = scale;
+        }
+    }
+
+    /// The spectral value of a lookup: (Σ w_i S_i) · (Σ w_i scale_i) (Mitsuba 3 interpolate_spectral).
+    SampledSpectrum spectrum(const Corners& k, const SampledWavelengths& wl) const {
+        const RGBSpectrumGrid& grid = RGBSpectrumGrid::instance();
+        SampledSpectrum shape(wl.size());
+        float scale = 0.0f;
+        for (int i = 0; i < k.count; ++i) {
+            const float* v = &scaled_[4 * k.voxel[i]];
+            shape += k.weight[i] * grid.reflectance(vec3(v[0], v[1], v[2]), wl);
+            scale += k.weight[i] * v[3];
+        }
+        return shape * scale;
     }
 
     /// The wrapped voxel indices along one axis whose values influence a lookup at a local
@@ -127,15 +163,17 @@ private:
         return out;
     }
 
-    void nearest(const vec3& u, float* c) const {
+    void nearest(const vec3& u, Corners& k) const {
         // FilterMode::Nearest: voxel floor(u·res) (Dr.Jit Texture::eval_nonaccel).
         const int x = int(wrapIndex(floorIndex(u.x * float(g_.xres)), g_.xres, wrap_));
         const int y = int(wrapIndex(floorIndex(u.y * float(g_.yres)), g_.yres, wrap_));
         const int z = int(wrapIndex(floorIndex(u.z * float(g_.zres)), g_.zres, wrap_));
-        for (int k = 0; k < g_.channels; ++k) c[k] = g_.at(x, y, z, k);
+        k.voxel[0] = g_.index(x, y, z, 0) / size_t(g_.channels);
+        k.weight[0] = 1.0f;
+        k.count = 1;
     }
 
-    void trilinear(const vec3& u, float* c) const {
+    void trilinear(const vec3& u, Corners& k) const {
         // FilterMode::Linear: sample positions at cell centres, x·res − ½ (Dr.Jit eval_nonaccel).
         const int res[3] = {g_.xres, g_.yres, g_.zres};
         int i[3][2];
@@ -150,15 +188,16 @@ private:
         }
         for (int corner = 0; corner < 8; ++corner) {
             const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
-            const float weight = w[0][bx] * w[1][by] * w[2][bz];
-            for (int k = 0; k < g_.channels; ++k) c[k] += weight * g_.at(i[0][bx], i[1][by], i[2][bz], k);
+            k.voxel[corner] = g_.index(i[0][bx], i[1][by], i[2][bz], 0) / size_t(g_.channels);
+            k.weight[corner] = w[0][bx] * w[1][by] * w[2][bz];
         }
+        k.count = 8;
     }
 
     VolumeGridData g_;
     Filter filter_;
     Wrap wrap_;
-    SpectrumKind kind_;
+    std::vector<float> scaled_;  // 3-channel grids: per voxel rgb/scale and scale (scaleColours)
     ValueRange range_;
     float maxValue_ = 0.0f;
 };
@@ -185,7 +224,7 @@ std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     if (g.channels != 1 && g.channels != 3)
         failAt(p.locationOf("filename"), file, ": gridvolume supports 1- or 3-channel grids, this one has ", g.channels);
     const mat4 m = gridToWorld(p, toWorld, useGridBox, g);
-    return std::make_shared<GridVolume>(std::move(g), m, filter, wrap, kind);
+    return std::make_shared<GridVolume>(std::move(g), m, filter, wrap);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 
 #include "core/rng.h"
 #include "materials/volumes/volume.h"
+#include "spectral/color_space.h"
+#include "spectral/rgb_spectrum_grid.h"
 #include "tests/support/error_of.h"
 #include "tests/support/vol_file.h"
 
@@ -42,6 +44,8 @@ VolumePtr makeVolume(const std::string& type, std::initializer_list<Param> param
 const SampledWavelengths kRGB = SampledWavelengths::rgb(defaultChannelWavelengths());
 
 float at(const Volume& v, vec3 p) { return v.eval(p, kRGB)[0]; }
+/// The spectral value at one wavelength (nm).
+float at(const Volume& v, vec3 p, float lambda) { return v.eval(p, SampledWavelengths::fixed(&lambda, 1))[0]; }
 
 /// 2×2×2 grid with v(x, y, z) = x + 2y + 4z.
 std::string linearGrid() {
@@ -149,8 +153,9 @@ TEST(GridVolume, RGBGridInRGBMode) {
     EXPECT_FLOAT_EQ(v->range().max, 1.0f);
 }
 
-TEST(GridVolume, RGBGridInSpectralModeUpsamplesTheInterpolatedColour) {
-    // Grey voxels upsample to flat spectra (spectral/rgb_spectrum_grid.h: greys to 1.7e-4).
+TEST(GridVolume, RGBGridInSpectralModeIsScaledAsMitsuba3) {
+    // Grey voxels give flat spectra (spectral/rgb_spectrum_grid.h: greys to 1.7e-4), whatever the
+    // parameter's kind: halfway between 0.25 and 0.75, (½S + ½S)(½·0.5 + ½·1.5) = 0.5.
     const std::string f = writeVol("grey.vol", ivec3(2, 1, 1), 3, {0.25f, 0.25f, 0.25f, 0.75f, 0.75f, 0.75f});
     const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.3f, 8);
     for (SpectrumKind kind : {SpectrumKind::Reflectance, SpectrumKind::Unbounded}) {
@@ -160,15 +165,28 @@ TEST(GridVolume, RGBGridInSpectralModeUpsamplesTheInterpolatedColour) {
         for (int i = 0; i < 8; ++i) EXPECT_NEAR(s[i], 0.5f, 1e-3f);
         for (int i = 0; i < 8; ++i) EXPECT_LE(s[i], v->maxValue());
     }
-    // A coloured Unbounded grid stays under max(rgb) in every lane (m · s(rgb/m), s ≤ 1).
-    const std::string c = writeVol("col.vol", ivec3(1), 3, {3.0f, 0.5f, 1.0f});
+    // A coloured voxel is 2m · S(rgb/2m) (Mitsuba 3 grid.cpp), which projects onto its colour but
+    // is not the reflectance or unbounded upsampling of the colour itself; blended voxels multiply
+    // the blended shapes by the blended scales.
+    const vec3 c0(3.0f, 0.5f, 1.0f), c1(0.2f, 0.9f, 0.4f);
+    const std::string c = writeVol("col.vol", ivec3(2, 1, 1), 3, {c0.x, c0.y, c0.z, c1.x, c1.y, c1.z});
     const VolumePtr v = makeVolume("gridvolume", {{"filename", c}});
-    const SampledSpectrum s = v->eval(vec3(0.5f), wl);
+    const RGBSpectrumGrid& grid = RGBSpectrumGrid::instance();
+    const vec3 rgb = rgbProjection([&](float lambda) { return at(*v, vec3(0.25f, 0.5f, 0.5f), lambda); }, SpectrumKind::Reflectance);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(rgb[k], c0[k], 2e-3f * 3.0f) << "channel " << k;
+    const SampledSpectrum mid = v->eval(vec3(0.5f), wl);
+    const SampledSpectrum shape = 0.5f * grid.reflectance(c0 / 6.0f, wl) + 0.5f * grid.reflectance(c1 / 1.8f, wl);
     for (int i = 0; i < 8; ++i) {
-        EXPECT_GE(s[i], 0.0f);
-        EXPECT_LE(s[i], 3.0f * (1 + 1e-6f));
+        EXPECT_NEAR(mid[i], shape[i] * 0.5f * (6.0f + 1.8f), 1e-5f);
+        EXPECT_LE(mid[i], v->maxValue());
     }
-    EXPECT_FLOAT_EQ(v->maxValue(), 3.0f);
+    EXPECT_FLOAT_EQ(v->maxValue(), 6.0f);
+    // The reflectance upsampling of the same colour (what iris did before) differs in shape.
+    const SampledSpectrum old = grid.sample(c0, SpectrumKind::Unbounded, wl);
+    const SampledSpectrum now = v->eval(vec3(0.25f, 0.5f, 0.5f), wl);
+    float diff = 0.0f;
+    for (int i = 0; i < 8; ++i) diff = std::max(diff, std::abs(old[i] - now[i]));
+    EXPECT_GT(diff, 0.05f);
 }
 
 TEST(GridVolume, MaxValueInBoundsEveryPointOfTheBox) {
