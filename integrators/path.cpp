@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/sampling.h"
+#include "integrators/transport_steps.h"
 #include "materials/material.h"
 
 namespace iris {
@@ -20,43 +21,27 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
     float bsdfPdf = 0.0f;       // solid-angle pdf of the previous BSDF sample (for MIS)
     vec3 prevP(0.0f);
     float etaScale = 1.0f;
-    const auto& lights = scene.lights();
-    const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
+    const bool haveLights = !scene.lights().empty();
     ++stats.paths;
 
     // depth = number of path segments so far (the camera ray is segment 1).
     for (int depth = 1;; ++depth) {
         ++stats.rays;
         const std::optional<SurfaceInteraction> hit = scene.intersect(ray);
-        const bool countEmission = !(hideEmitters_ && depth == 1);
-
-        if (!hit) {
-            if (countEmission)
-                for (const Light* light : scene.infiniteLights()) {
-                    const SampledSpectrum Le = light->Le(TextureQuery{}, vec3(0.0f), ray.d, wl);
-                    if (depth == 1 || specularBounce) {
-                        L += beta * Le;
-                    } else {
-                        const float lightPdf = lightSelectPdf * light->pdfLi(prevP, ray.d, nullptr);
-                        L += beta * Le * powerHeuristic(bsdfPdf, lightPdf);
-                    }
-                }
-            break;
-        }
-        const SurfaceInteraction& si = *hit;
-
-        // Emission from an area light that the path hit.
-        if (si.areaLight && countEmission) {
-            const SampledSpectrum Le = si.areaLight->Le(textureQueryAt(si), si.ng, si.wo, wl);
-            if (!Le.isBlack()) {
+        // Emission the path reached: full weight after the camera or a delta lobe, else MIS with
+        // next-event estimation from the previous vertex.
+        if (!(hideEmitters_ && depth == 1))
+            forEachEmission(scene, hit ? &*hit : nullptr, ray.d, wl, [&](const Light& light, const SampledSpectrum& Le) {
+                if (Le.isBlack()) return;
                 if (depth == 1 || specularBounce) {
                     L += beta * Le;
                 } else {
-                    const float lightPdf = lightSelectPdf * si.areaLight->pdfLi(prevP, ray.d, &si);
+                    const float lightPdf = lightSamplingPdf(scene, light, prevP, ray.d, hit ? &*hit : nullptr);
                     L += beta * Le * powerHeuristic(bsdfPdf, lightPdf);
                 }
-            }
-        }
+            });
+        if (!hit) break;
+        const SurfaceInteraction& si = *hit;
         if (depth >= maxDepth_) break;
 
         const ShadingPoint sp = shadingPointAt(si);
@@ -69,36 +54,12 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         }
         const vec3 wo = frame.toLocal(si.wo);
 
-        // Next-event estimation (a path of depth+1 segments).
-        if (!lights.empty() && bsdf->hasNonSpecular()) {
+        // Next-event estimation (a path of depth+1 segments). Both numbers are drawn whether or not
+        // the BSDF can use them, so that the sample stream stays aligned.
+        if (haveLights) {
             const float uLight = sampler.get1D();
             const vec2 uL = sampler.get2D();
-            const int li = std::min(int(uLight * lights.size()), int(lights.size()) - 1);
-            const Light& light = *lights[li];
-            if (const auto ls = light.sampleLi(si.p, uL, wl); ls && ls->pdf > 0 && !ls->L.isBlack()) {
-                const vec3 wi = frame.toLocal(ls->wi);
-                SampledSpectrum f = bsdf->eval(wo, wi, TransportMode::Radiance);
-                // Light leaks through shading normals: require the geometric sides to agree.
-                const bool sideOk = glm::dot(ls->wi, si.ng) * wi.z > 0;
-                if (sideOk && !f.isBlack()) {
-                    ++stats.rays;
-                    const bool vis = ls->infinite ? scene.visibleInfinite(si, ls->wi) : scene.visible(si, ls->pLight, ls->nLight);
-                    if (vis) {
-                        f *= std::abs(wi.z);
-                        if (light.isDelta()) {
-                            L += beta * f * ls->L / (lightSelectPdf * ls->pdf);
-                        } else {
-                            const float lightPdf = lightSelectPdf * ls->pdf;
-                            const float scatterPdf = bsdf->pdf(wo, wi, TransportMode::Radiance);
-                            L += beta * f * ls->L * (powerHeuristic(lightPdf, scatterPdf) / lightPdf);
-                        }
-                    }
-                }
-            }
-        } else if (!lights.empty()) {
-            // Keep the sample stream aligned regardless of the branch taken.
-            sampler.get1D();
-            sampler.get2D();
+            if (bsdf->hasNonSpecular()) L += directLight(scene, si, frame, *bsdf, wo, uLight, uL, wl, beta, stats);
         }
 
         // Sample the BSDF to continue the path.
@@ -111,7 +72,7 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         // valid intersection) and, being a delta lobe, the emitter it reaches gets MIS weight 1.
         const bool passThrough = bs->isNull();
         const vec3 wiWorld = passThrough ? glm::normalize(ray.d) : glm::normalize(frame.toWorld(bs->wi));
-        if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) break;  // sampled across the geometric surface
+        if (params_.strictNormals && !passThrough && !sidesAgree(wiWorld, si.ng, bs->wi.z)) break;
         beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;
@@ -120,16 +81,29 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         ray = si.spawnRay(wiWorld);
         if (beta.isBlack() || beta.hasNonFinite()) break;
 
-        // Russian roulette (pbrt-v4 §13.4.4), on throughput with radiance scaling undone.
+        // Russian roulette, on throughput with radiance scaling undone.
         const float uRR = sampler.get1D();
         if (depth >= rrDepth_) {
-            const float q = std::min(0.95f, (beta * etaScale).maxValue());
-            if (uRR >= q) break;
+            const float q = rouletteSurvival((beta * etaScale).maxValue(), uRR);
+            if (q == 0.0f) break;
             beta /= q;
         }
         arena.reset();
     }
     return L;
+}
+
+SampledSpectrum PathIntegrator::directLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf,
+                                            const vec3& wo, float uLight, const vec2& uL, const SampledWavelengths& wl,
+                                            const SampledSpectrum& beta, PathStats& stats) const {
+    const std::optional<VertexLightSample> s =
+        sampleLightAtSurface(scene, si.p, si.ng, frame, bsdf, wo, uLight, uL, wl, params_.strictNormals);
+    if (!s) return SampledSpectrum(wl.size());
+    ++stats.rays;
+    const LightSample& ls = s->ls;
+    if (!(ls.infinite ? scene.visibleInfinite(si, ls.wi) : scene.visible(si, ls.pLight, ls.nLight))) return SampledSpectrum(wl.size());
+    if (s->light->isDelta()) return beta * s->f * ls.L / s->lightPdf;
+    return beta * s->f * ls.L * (powerHeuristic(s->lightPdf, s->scatterPdf) / s->lightPdf);
 }
 
 PathParams readPathParams(const Properties& p) {
@@ -139,9 +113,8 @@ PathParams readPathParams(const Properties& p) {
     pp.rrDepth = p.getInt("rr_depth", 5);
     if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
     pp.hideEmitters = p.getBool("hide_emitters", false);
-    // Mitsuba 0.6's strictNormals (default false) is accepted and has no effect: iris always
-    // discards a sampled direction whose geometric and shading sides disagree (strict for wi).
-    p.getBool("strict_normals", false);
+    // Mitsuba 0.6's strictNormals (default false; Mitsuba 3 has no such test): see sidesAgree.
+    pp.strictNormals = p.getBool("strict_normals", true);
     if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
     return pp;
 }

@@ -13,10 +13,13 @@ struct PathParams {
     int maxDepth = -1;  // −1: unlimited (Russian roulette terminates)
     int rrDepth = 5;    // Russian roulette starts after this many segments
     bool hideEmitters = false;
+    /// Mitsuba 0.6's strictNormals: follow (and light) only directions whose geometric and shading
+    /// sides agree (integrators/transport_steps.h, sidesAgree).
+    bool strictNormals = false;
 };
 
-/// Reads max_depth, rr_depth and hide_emitters (Mitsuba 0.6: maxDepth, rrDepth, hideEmitters)
-/// and strict_normals (accepted, no effect); shared by path, direct, volpath and volpathmis.
+/// Reads max_depth, rr_depth, hide_emitters and strict_normals (Mitsuba 0.6: maxDepth, rrDepth,
+/// hideEmitters, strictNormals); shared by path, direct, volpath and volpathmis.
 PathParams readPathParams(const Properties& p);
 
 class PathIntegrator final : public Integrator {
@@ -28,6 +31,11 @@ public:
     const PathParams& params() const { return params_; }
 
 private:
+    /// Next-event estimation at si with MIS (power heuristic): one light sample, its occlusion test.
+    SampledSpectrum directLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf,
+                                const vec3& wo, float uLight, const vec2& uL, const SampledWavelengths& wl,
+                                const SampledSpectrum& beta, PathStats& stats) const;
+
     PathParams params_;
     int maxDepth_, rrDepth_;
     bool hideEmitters_;

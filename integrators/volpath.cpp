@@ -40,6 +40,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
+#include "integrators/transport_steps.h"
 #include "materials/material.h"
 
 namespace iris {
@@ -161,8 +162,8 @@ private:
     /// throughput with radiance scaling undone; u is drawn at every event. False: the path ends.
     bool survivesRoulette(PathState& ps, int h, const SampledWavelengths& wl, float u) const {
         if (ps.depth < params_.rrDepth) return true;
-        const float q = std::min(0.95f, (ps.beta * ps.etaScale).maxValue() / reduce(ps.rU, h, wl));
-        if (!(u < q)) return false;
+        const float q = rouletteSurvival((ps.beta * ps.etaScale).maxValue() / reduce(ps.rU, h, wl), u);
+        if (q == 0.0f) return false;
         ps.beta /= q;
         return true;
     }
@@ -170,12 +171,11 @@ private:
     bool scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
                           SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const;
 
-    /// Next-event estimation from p: the surface point si, or (si = nullptr) a point in ps.medium.
-    /// `f(wi, scatterPdf)` gives the BSDF·|cos| or phase value towards wi and sets its pdf.
-    template <typename F>
-    SampledSpectrum sampleLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, int h,
-                                const PathState& ps, const SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena,
-                                PathStats& stats, F&& f) const;
+    /// Next-event estimation's contribution of the light sample s taken at p: the surface point si,
+    /// or (si = nullptr) a point in ps.medium; its shadow ray's transmittance and the MIS ratios.
+    SampledSpectrum lightContribution(const Scene& scene, const vec3& p, const SurfaceInteraction* si, const VertexLightSample& s,
+                                      int h, const PathState& ps, const SampledWavelengths& wl, Pcg32& rng, Arena& arena,
+                                      PathStats& stats) const;
     /// Transmittance from `o` towards `target` (or to infinity along `dir`), by ratio tracking
     /// through media and pass-through surfaces; 0 when an opaque surface blocks. Updates the
     /// strategies' pdf ratios rU, rL along the way.
@@ -271,14 +271,12 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
     if (++ps.depth >= maxDepth_) return ps.terminated = true, false;
     const PhaseFunction& phase = ps.medium->phase();
     const vec3 wo = -ray.d;
-    if (ps.medium->sampleEmitters() && !scene.lights().empty()) {
-        ps.L += sampleLight(scene, p, nullptr, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wi, float& pdf) {
-            pdf = phase.pdf(wo, wi);
-            return SampledSpectrum(wl.size(), phase.eval(wo, wi));
-        });
-    } else if (!scene.lights().empty()) {
-        sampler.get1D();  // keep the sampler's dimensions aligned
-        sampler.get2D();
+    if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
+        const float uLight = sampler.get1D();
+        const vec2 uL = sampler.get2D();
+        if (ps.medium->sampleEmitters())
+            if (const auto s = sampleLightInMedium(scene, p, phase, wo, uLight, uL, wl))
+                ps.L += lightContribution(scene, p, nullptr, *s, h, ps, wl, rng, arena, stats);
     }
     const std::optional<PhaseSample> s = phase.sample(wo, sampler.get2D());
     if (!s || !(s->pdf > 0)) return ps.terminated = true, false;
@@ -294,22 +292,15 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
 void VolPathIntegrator::addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
                                     const SampledWavelengths& wl) const {
     if (params_.hideEmitters && ps.depth == 0) return;
-    const auto& lights = scene.lights();
-    const float lightSelectPdf = lights.empty() ? 0.0f : 1.0f / float(lights.size());
-    auto add = [&](const Light& light, const SampledSpectrum& Le) {
+    forEachEmission(scene, si, ray.d, wl, [&](const Light& light, const SampledSpectrum& Le) {
         if (Le.isBlack()) return;
         if (ps.depth == 0 || ps.specularBounce) {
             ps.L += ps.beta * Le / reduce(ps.rU, h, wl);
             return;
         }
-        const SampledSpectrum rL = ps.rL * (lightSelectPdf * light.pdfLi(ps.prevP, ray.d, si));
+        const SampledSpectrum rL = ps.rL * lightSamplingPdf(scene, light, ps.prevP, ray.d, si);
         ps.L += ps.beta * Le / reduce(ps.rU + rL, h, wl);
-    };
-    if (!si) {
-        for (const Light* light : scene.infiniteLights()) add(*light, light->Le(TextureQuery{}, vec3(0.0f), ray.d, wl));
-    } else if (si->areaLight) {
-        add(*si->areaLight, si->areaLight->Le(textureQueryAt(*si), si->ng, si->wo, wl));
-    }
+    });
 }
 
 bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
@@ -324,18 +315,12 @@ bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceIntera
         return true;
     }
     const vec3 wo = frame.toLocal(si.wo);
-    if (bsdf->hasNonSpecular() && !scene.lights().empty() && ps.depth + 1 < maxDepth_) {
-        const vec3 ng = si.ng;
-        ps.L += sampleLight(scene, si.p, &si, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wiWorld, float& pdf) {
-            const vec3 wi = frame.toLocal(wiWorld);
-            pdf = 0.0f;
-            if (!(glm::dot(wiWorld, ng) * wi.z > 0)) return SampledSpectrum(wl.size(), 0.0f);  // light leak through shading normals
-            pdf = bsdf->pdf(wo, wi, TransportMode::Radiance);
-            return bsdf->eval(wo, wi, TransportMode::Radiance) * std::abs(wi.z);
-        });
-    } else if (!scene.lights().empty()) {
-        sampler.get1D();
-        sampler.get2D();
+    if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
+        const float uLight = sampler.get1D();
+        const vec2 uL = sampler.get2D();
+        if (bsdf->hasNonSpecular() && ps.depth + 1 < maxDepth_)
+            if (const auto s = sampleLightAtSurface(scene, si.p, si.ng, frame, *bsdf, wo, uLight, uL, wl, params_.strictNormals))
+                ps.L += lightContribution(scene, si.p, &si, *s, h, ps, wl, rng, arena, stats);
     }
     const float uc = sampler.get1D();
     const vec2 u = sampler.get2D();
@@ -343,7 +328,7 @@ bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceIntera
     if (!bs || bs->pdf <= 0 || bs->f.isBlack()) return false;
     const bool passThrough = bs->isNull();
     const vec3 wiWorld = passThrough ? ray.d : glm::normalize(frame.toWorld(bs->wi));
-    if (!passThrough && glm::dot(wiWorld, si.ng) * bs->wi.z <= 0) return false;  // across the geometric surface
+    if (params_.strictNormals && !passThrough && !sidesAgree(wiWorld, si.ng, bs->wi.z)) return false;
     ps.beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
     if (!passThrough) {  // a real bounce (the null lobe of a mask is a boundary crossing)
         ++ps.depth;
@@ -359,40 +344,29 @@ bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceIntera
     return passThrough || survivesRoulette(ps, h, wl, uRR);
 }
 
-template <typename F>
-SampledSpectrum VolPathIntegrator::sampleLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, int h,
-                                               const PathState& ps, const SampledWavelengths& wl, Sampler& sampler, Pcg32& rng,
-                                               Arena& arena, PathStats& stats, F&& f) const {
-    const auto& lights = scene.lights();
-    const float uLight = sampler.get1D();
-    const vec2 uL = sampler.get2D();
-    const int li = std::min(int(uLight * lights.size()), int(lights.size()) - 1);
-    const Light& light = *lights[li];
-    const float lightSelectPdf = 1.0f / float(lights.size());
-    const auto ls = light.sampleLi(p, uL, wl);
-    if (!ls || !(ls->pdf > 0) || ls->L.isBlack()) return SampledSpectrum(wl.size(), 0.0f);
-    float scatterPdf = 0.0f;
-    const SampledSpectrum fv = f(ls->wi, scatterPdf);
-    if (fv.isBlack()) return fv;
+SampledSpectrum VolPathIntegrator::lightContribution(const Scene& scene, const vec3& p, const SurfaceInteraction* si,
+                                                     const VertexLightSample& s, int h, const PathState& ps,
+                                                     const SampledWavelengths& wl, Pcg32& rng, Arena& arena, PathStats& stats) const {
+    const LightSample& ls = s.ls;
     // The shadow ray: from the surface (offset to the light's side; leaving a medium transition
     // towards the light may enter the other side's medium) or the medium point, to the light point
     // (offset off an area light) or to infinity.
-    const vec3 o = si ? offsetRayOrigin(p, si->ng, ls->wi) : p;
-    const Medium* start = si ? mediumAfter(scene, *si, ls->wi, ps.medium) : ps.medium;
+    const vec3 o = si ? offsetRayOrigin(p, si->ng, ls.wi) : p;
+    const Medium* start = si ? mediumAfter(scene, *si, ls.wi, ps.medium) : ps.medium;
     float dist = std::numeric_limits<float>::infinity();
-    vec3 dir = ls->wi;
-    if (!ls->infinite) {
-        const vec3 target = glm::dot(ls->nLight, ls->nLight) > 0 ? offsetRayOrigin(ls->pLight, ls->nLight, -ls->wi) : ls->pLight;
+    vec3 dir = ls.wi;
+    if (!ls.infinite) {
+        const vec3 target = glm::dot(ls.nLight, ls.nLight) > 0 ? offsetRayOrigin(ls.pLight, ls.nLight, -ls.wi) : ls.pLight;
         const vec3 d = target - o;
         dist = glm::length(d) * (1.0f - 1e-4f);
         if (!(dist > 0)) return SampledSpectrum(wl.size(), 0.0f);
         dir = d / glm::length(d);
     }
-    SampledSpectrum rL = ps.rU * (lightSelectPdf * ls->pdf), rU = ps.rU * scatterPdf;
+    SampledSpectrum rL = ps.rU * s.lightPdf, rU = ps.rU * s.scatterPdf;
     const SampledSpectrum T = shadowTransmittance(scene, o, dir, dist, start, h, rU, rL, wl, rng, arena, stats);
     if (T.isBlack()) return T;
-    const SampledSpectrum contrib = ps.beta * fv * T * ls->L;
-    if (light.isDelta()) return contrib / reduce(rL, h, wl);
+    const SampledSpectrum contrib = ps.beta * s.f * T * ls.L;
+    if (s.light->isDelta()) return contrib / reduce(rL, h, wl);
     return contrib / reduce(rL + rU, h, wl);
 }
 

@@ -1,0 +1,61 @@
+#include "integrators/transport_steps.h"
+
+#include <algorithm>
+
+namespace iris {
+
+LightChoice chooseLight(const Scene& scene, float u) {
+    const auto& lights = scene.lights();
+    if (lights.empty()) return {};
+    const int i = std::min(int(u * lights.size()), int(lights.size()) - 1);
+    return {lights[size_t(i)].get(), 1.0f / float(lights.size())};
+}
+
+float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from, const vec3& d, const SurfaceInteraction* hit) {
+    const float pmf = scene.lights().empty() ? 0.0f : 1.0f / float(scene.lights().size());
+    return pmf * light.pdfLi(from, d, hit);
+}
+
+namespace {
+
+/// chooseLight and the chosen light's sample from p; nullopt when there is nothing to light with.
+std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
+                                                   const SampledWavelengths& wl) {
+    const LightChoice choice = chooseLight(scene, uLight);
+    if (!choice.light) return std::nullopt;
+    const std::optional<LightSample> ls = choice.light->sampleLi(p, uL, wl);
+    if (!ls || !(ls->pdf > 0) || ls->L.isBlack()) return std::nullopt;
+    VertexLightSample s;
+    s.light = choice.light;
+    s.ls = *ls;
+    s.lightPdf = choice.pmf * ls->pdf;
+    return s;
+}
+
+}  // namespace
+
+std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
+                                                      const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
+                                                      const SampledWavelengths& wl, bool strictNormals) {
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl);
+    if (!s) return std::nullopt;
+    const vec3 wi = frame.toLocal(s->ls.wi);
+    if (strictNormals && !sidesAgree(s->ls.wi, ng, wi.z)) return std::nullopt;
+    s->f = bsdf.eval(wo, wi, TransportMode::Radiance);
+    if (s->f.isBlack()) return std::nullopt;
+    s->f *= std::abs(wi.z);
+    s->scatterPdf = bsdf.pdf(wo, wi, TransportMode::Radiance);
+    return s;
+}
+
+std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const vec3& p, const PhaseFunction& phase, const vec3& wo,
+                                                     float uLight, const vec2& uL, const SampledWavelengths& wl) {
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl);
+    if (!s) return std::nullopt;
+    s->scatterPdf = phase.pdf(wo, s->ls.wi);
+    s->f = SampledSpectrum(wl.size(), phase.eval(wo, s->ls.wi));
+    if (s->f.isBlack()) return std::nullopt;
+    return s;
+}
+
+}  // namespace iris

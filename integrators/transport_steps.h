@@ -1,0 +1,88 @@
+// The steps every path-space integrator takes, written once (pbrt-v4 §13.4: SampleLd, the emission
+// MIS of PathIntegrator::Li, Russian roulette; Mitsuba 3 src/integrators/path.cpp and volpath.cpp):
+//   - choosing the light for next-event estimation (uniformly, Mitsuba 3 Scene::sample_emitter),
+//   - sampling it from a surface point with the BSDF evaluated towards it,
+//   - the light-sampling pdf of a direction that reached a light (for MIS at an emitter hit),
+//   - the emission a ray finds (the area light it hit, or every infinite light when it escaped),
+//   - the strict-normals rule and Russian roulette.
+// Visibility and the MIS weights stay with each integrator: `path` tests occlusion and uses the
+// power heuristic, the volumetric ones estimate transmittance and combine pdf ratios over lanes.
+#pragma once
+
+#include <optional>
+
+#include "materials/bsdf.h"
+#include "materials/material.h"
+#include "materials/phase/phase_function.h"
+#include "render/lights/light.h"
+#include "render/scene.h"
+
+namespace iris {
+
+/// The light next-event estimation uses, and the probability of having chosen it.
+struct LightChoice {
+    const Light* light = nullptr;
+    float pmf = 0.0f;
+};
+
+/// One of the scene's lights, chosen uniformly with u ∈ [0, 1) (Mitsuba 3 Scene::sample_emitter);
+/// light is nullptr when the scene has none.
+LightChoice chooseLight(const Scene& scene, float u);
+
+/// The solid-angle density with which next-event estimation from `from` produces direction `d`
+/// towards `light`, the light's choice included; `hit` is where d reached it (area lights) or
+/// nullptr (infinite lights).
+float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from, const vec3& d, const SurfaceInteraction* hit);
+
+/// Mitsuba 0.6's strictNormals: direction w (world) leaves the surface on the same side of the
+/// geometric normal ng as of the shading normal (wLocalZ, the direction's z in the shading frame).
+/// Off by default in both Mitsubas (Mitsuba 3 has no such test): then every sampled direction is
+/// followed, and light may leak through shading normals as it does there.
+inline bool sidesAgree(const vec3& w, const vec3& ng, float wLocalZ) { return glm::dot(w, ng) * wLocalZ > 0; }
+
+/// A light sample as seen from a path vertex (a surface point or a point in a medium), before its
+/// visibility is known.
+struct VertexLightSample {
+    const Light* light = nullptr;
+    LightSample ls;         // direction, radiance, the light's own pdf, the shadow ray's target
+    float lightPdf = 0;     // chooseLight's pmf × ls.pdf
+    float scatterPdf = 0;   // the pdf BSDF or phase sampling would have had for the direction
+    SampledSpectrum f;      // f(wo, wi) · |cos θi| at a surface, the phase function in a medium
+};
+
+/// Next-event estimation's sample at surface point p (geometric normal ng) with shading frame
+/// `frame`, BSDF `bsdf` and wo (local), drawing its light with uLight and its point with uL:
+/// nullopt when the light gives nothing there, the BSDF is black towards it, or (strictNormals)
+/// wi leaves on the other side of the geometric surface than of the shading one.
+std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
+                                                      const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
+                                                      const SampledWavelengths& wl, bool strictNormals);
+
+/// The same at point p in a medium with phase function `phase` and wo (world, towards the previous
+/// vertex).
+std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const vec3& p, const PhaseFunction& phase, const vec3& wo,
+                                                     float uLight, const vec2& uL, const SampledWavelengths& wl);
+
+/// Calls emitted(light, Le) for the emission a ray with direction `d` finds: the area light of its
+/// hit, or every infinite light when it escaped (hit = nullptr).
+template <typename F>
+void forEachEmission(const Scene& scene, const SurfaceInteraction* hit, const vec3& d, const SampledWavelengths& wl, F&& emitted);
+
+/// Russian roulette (pbrt-v4 §13.4.4, Mitsuba 3 path.cpp): the path survives with probability
+/// q = min(0.95, m), m its largest throughput (radiance scaling by η² undone). Returns q when it
+/// survives (divide the throughput by it), 0 when the path ends.
+inline float rouletteSurvival(float m, float u) {
+    const float q = std::min(0.95f, m);
+    return u < q ? q : 0.0f;
+}
+
+template <typename F>
+void forEachEmission(const Scene& scene, const SurfaceInteraction* hit, const vec3& d, const SampledWavelengths& wl, F&& emitted) {
+    if (!hit) {
+        for (const Light* light : scene.infiniteLights()) emitted(*light, light->Le(TextureQuery{}, vec3(0.0f), d, wl));
+        return;
+    }
+    if (hit->areaLight) emitted(*hit->areaLight, hit->areaLight->Le(textureQueryAt(*hit), hit->ng, hit->wo, wl));
+}
+
+}  // namespace iris
