@@ -114,7 +114,7 @@ PathParams readPathParams(const Properties& p) {
     if (pp.rrDepth < 1) failAt(p.locationOf("rr_depth"), "rr_depth must be >= 1");
     pp.hideEmitters = p.getBool("hide_emitters", false);
     // Mitsuba 0.6's strictNormals (default false; Mitsuba 3 has no such test): see sidesAgree.
-    pp.strictNormals = p.getBool("strict_normals", true);
+    pp.strictNormals = p.getBool("strict_normals", false);
     if (!p.children().empty()) failAt(p.children()[0]->location(), "unexpected <", p.children()[0]->tag(), "> inside <integrator>");
     return pp;
 }
