@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include <pugixml.hpp>
 
+#include "core/input_file.h"
 #include "core/xml/xml_values.h"
 
 namespace iris {
@@ -74,16 +74,12 @@ private:
         if (std::find(openFiles_.begin(), openFiles_.end(), key) != openFiles_.end())
             failAt(from, "recursive include of '", path, "'");
         if (int(openFiles_.size()) >= kMaxIncludeDepth) failAt(from, "includes nested too deeply (limit ", kMaxIncludeDepth, ")");
-        if (fs::is_directory(abs, ec)) failAt(from, "'", path, "' is a directory, not a scene file");
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            if (from.file.empty()) fail(path, ": cannot open scene file");
-            failAt(from, "cannot open included file '", path, "'");
-        }
-        std::ostringstream ss;
-        ss << in.rdbuf();
+        // The checks of core/input_file.h: a regular file within kMaxSceneFileBytes (an <include>
+        // of /dev/zero grew one buffer without end, issue 38); an include's error gets its line.
+        const std::string text = from.file.empty() ? readInputFile(path, "scene file", kMaxSceneFileBytes)
+                                                   : withLocation(from, [&] { return readInputFile(path, "included file", kMaxSceneFileBytes); });
         openFiles_.push_back(key);
-        parseDocument(ss.str(), path, abs.parent_path());
+        parseDocument(text, path, abs.parent_path());
         openFiles_.pop_back();
     }
 
