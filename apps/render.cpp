@@ -83,7 +83,10 @@ const char* kUsage = R"(usage: render [scene.xml] [options]
 Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
 
 Output
-  -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it
+  -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it.
+                           Every output path is checked before the scene is loaded; an output
+                           whose final write fails goes to iris-rescued-<pid>-<name> in the
+                           current folder or $TMPDIR, which the error names
   --no-png                 do not write the .png beside the .exr
   --variance FILE          also write each pixel's estimated variance of the mean (s²/n from the
                            per-sample second moments) in CIE XYZ to the EXR FILE (channels X, Y, Z)
@@ -120,9 +123,11 @@ Scene
 Robustness
   --checkpoint FILE        keep the film state in FILE (written at the end, on Ctrl-C, and every
                            --checkpoint-every SEC); --resume continues from it bit-exactly
-  --memory-limit SIZE      refuse a scene whose meshes, textures and film would need more than
-                           SIZE (e.g. 512M, 4G; binary units), before allocating them; also
-                           IRIS_MEMORY_LIMIT; default: no limit
+  --memory-limit SIZE      refuse a scene whose parsed XML, meshes, textures, volumes, film and
+                           ray-tracing geometry would need more than SIZE (e.g. 512M, 4G; binary
+                           units; 0: no limit), before allocating them; also IRIS_MEMORY_LIMIT;
+                           default: half of the memory the process may use (physical memory, or
+                           less under a cgroup limit or ulimit -v)
   --quiet                  no progress bar
   --version, --help
 )";
@@ -399,14 +404,14 @@ int main(int argc, char** argv) {
             }
             writeOrRescue(ldrPath, [&](const std::string& p) { writeLDR(p, ldr); }, errors);
         }
+        if (!errors.empty()) {  // one line per output that is not where it was asked
+            std::fprintf(stderr, "%s\n", errors.c_str());
+            return 1;
+        }
         std::fprintf(stderr, "%s: %u spp%s in %.2f s, %.3g rays/s, %llu invalid samples%s\n", output.c_str(), st.sppMin,
                      st.sppMax != st.sppMin ? strCat(" (some pixels ", st.sppMax, ")").c_str() : "", st.seconds,
                      st.seconds > 0 ? double(st.rays) / st.seconds : 0.0, (unsigned long long)st.invalidSamples,
                      st.interrupted ? " [interrupted]" : "");
-        if (!errors.empty()) {
-            std::fprintf(stderr, "%s\n", errors.c_str());
-            return 1;
-        }
         return st.interrupted ? 130 : 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "render: error: %s\n", e.what());

@@ -68,13 +68,13 @@ void writeWithFallback(const std::string& path, const std::function<void(const s
         for (const std::string& p : fallbackPaths(path)) {
             try {
                 write(p);
-            } catch (const Error& e) {
-                tried += strCat("; ", e.what());
+            } catch (const Error&) {
+                tried += (tried.empty() ? "" : ", ") + p;
                 continue;
             }
             fail(first.what(), "; written to ", p, " instead");
         }
-        fail(first.what(), "; the fallbacks failed too", tried);
+        fail(first.what(), "; not written to a fallback either (", tried, ")");
     }
 }
 

@@ -26,8 +26,8 @@ void checkOutputPath(const std::string& path, std::string_view option);
 std::vector<std::string> fallbackPaths(const std::string& path);
 
 /// write(path); if that throws iris::Error, write(p) for each of fallbackPaths(path) until one
-/// succeeds, then throw iris::Error "<the first error>; written to <p> instead" (or "...; the
-/// fallbacks failed too: ..."), so the caller still reports a failure.
+/// succeeds, then throw iris::Error "<the first error>; written to <p> instead" (or "...; not
+/// written to a fallback either (<p1>, <p2>)"), so the caller still reports a failure.
 void writeWithFallback(const std::string& path, const std::function<void(const std::string&)>& write);
 
 }  // namespace iris

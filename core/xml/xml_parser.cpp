@@ -187,11 +187,13 @@ private:
             for (auto it = files_.rbegin(); it != files_.rend(); ++it) candidates.push_back(it->dir / p);
             for (const fs::path& d : searchPaths_) candidates.push_back(d / p);
         }
-        std::string searched;
+        std::string searched, folder;
         for (const fs::path& c : candidates) {
             if (fs::exists(c, ec) && !fs::is_directory(c, ec)) return fs::absolute(c, ec).lexically_normal().string();
+            if (folder.empty() && fs::is_directory(c, ec)) folder = c.string();
             searched += (searched.empty() ? "" : ", ") + c.parent_path().string();
         }
+        if (!folder.empty()) failAt(at, "'", file, "' is a directory, not a file (", folder, ")");
         failAt(at, "file '", file, "' not found (searched: ", searched, ")");
     }
 

@@ -122,9 +122,11 @@ TEST(InputFile, EveryReaderOfANamedFileGoesThroughTheChecks) {
         }
 }
 
-// A scene that includes /dev/zero names the include's line.
+// A scene that includes /dev/zero, or a folder, names the include's line.
 TEST(InputFile, AnIncludeOfADeviceNamesItsLine) {
     const std::string e = test::errorOf(
         [] { parseSceneString("<scene version=\"3.0.0\">\n<include filename=\"/dev/zero\"/>\n</scene>", "."); });
     EXPECT_EQ(e, "<string>:2: /dev/zero: cannot open included file: it is a character device, not a regular file");
+    const std::string folder = test::errorOf([] { parseSceneString("<scene version=\"3.0.0\">\n<include filename=\"/tmp\"/>\n</scene>", "."); });
+    EXPECT_EQ(folder, "<string>:2: '/tmp' is a directory, not a file (/tmp)");
 }
