@@ -13,11 +13,14 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "render/film.h"
 #include "core/io/image.h"
+#include "core/io/output_file.h"
 #include "core/io/spectral_layout.h"
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
@@ -80,7 +83,10 @@ const char* kUsage = R"(usage: render [scene.xml] [options]
 Renders a scene (default: the built-in scenes/default.xml) to an OpenEXR image.
 
 Output
-  -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it
+  -o, --output FILE        output image (default out.exr); an .exr also gets an sRGB .png beside it.
+                           Every output path is checked before the scene is loaded; an output
+                           whose final write fails goes to iris-rescued-<pid>-<name> in the
+                           current folder or $TMPDIR, which the error names
   --no-png                 do not write the .png beside the .exr
   --variance FILE          also write each pixel's estimated variance of the mean (s²/n from the
                            per-sample second moments) in CIE XYZ to the EXR FILE (channels X, Y, Z)
@@ -117,9 +123,11 @@ Scene
 Robustness
   --checkpoint FILE        keep the film state in FILE (written at the end, on Ctrl-C, and every
                            --checkpoint-every SEC); --resume continues from it bit-exactly
-  --memory-limit SIZE      refuse a scene whose meshes, textures and film would need more than
-                           SIZE (e.g. 512M, 4G; binary units), before allocating them; also
-                           IRIS_MEMORY_LIMIT; default: no limit
+  --memory-limit SIZE      refuse a scene whose parsed XML, meshes, textures, volumes, film and
+                           ray-tracing geometry would need more than SIZE (e.g. 512M, 4G; binary
+                           units; 0: no limit), before allocating them; also IRIS_MEMORY_LIMIT;
+                           default: half of the memory the process may use (physical memory, or
+                           less under a cgroup limit or ulimit -v)
   --quiet                  no progress bar
   --version, --help
 )";
@@ -179,6 +187,29 @@ Image withMoments(const Image& img, const Film& film) {
             out.pixels[9 * p + 6 + c] = m2[3 * p + c];
         }
     return out;
+}
+
+/// Every path the run will write, checked before the scene is loaded (core/io/output_file.h): a
+/// bad one is a usage error, found in a second instead of after the render.
+void checkOutputPaths(const std::vector<std::pair<std::string, std::string>>& outputs) {
+    for (const auto& [option, path] : outputs) {
+        if (path.empty()) continue;
+        try {
+            checkOutputPath(path, option);
+        } catch (const Error& e) {
+            usageError(e.what());
+        }
+    }
+}
+
+/// Write one output through `write`, to a fallback path if its own fails; a failure is added to
+/// `errors` (one line each) so that the other outputs are still written.
+void writeOrRescue(const std::string& path, const std::function<void(const std::string&)>& write, std::string& errors) {
+    try {
+        writeWithFallback(path, write);
+    } catch (const Error& e) {
+        errors += strCat(errors.empty() ? "" : "\n", "render: error: ", e.what());
+    }
 }
 
 }  // namespace
@@ -309,6 +340,11 @@ int main(int argc, char** argv) {
     if (sppRange && checkpoint.empty()) usageError("--spp-range needs --checkpoint FILE (the film state that `merge` adds up)");
     // An RGB-mode film keeps XYZ second moments for --variance; a checkpoint does not record that.
     if (!variancePath.empty() && !checkpoint.empty() && opt.rgbMode) usageError("--variance cannot be combined with --checkpoint in --mode rgb");
+    if (sppArg == 0 && !sppRange && !(opt.timeLimit > 0)) usageError("--spp 0 needs --time-limit SEC (it renders until then)");
+    const bool pngOnly = std::filesystem::path(output).extension() == ".png" || std::filesystem::path(output).extension() == ".jpg";
+    const std::string ldrPath = pngOnly ? output : writePng ? replaceExtension(output, ".png") : "";
+    checkOutputPaths({{"-o", output}, {"-o (the .png beside it)", pngOnly ? "" : ldrPath}, {"--spectral-output", spectralOutput},
+                      {"--variance", variancePath}, {"--checkpoint", checkpoint}});
     opt.checkpointPath = checkpoint;
     opt.resume = resume;
     opt.progress = !quiet && isatty(STDERR_FILENO);
@@ -340,22 +376,24 @@ int main(int argc, char** argv) {
         // Film values → output colour space, through OpenColorIO (render/render_output.h).
         const Image out = filmImage(film, opt.rgbMode, colors, outputSpace);
         const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
-        const bool pngOnly = std::filesystem::path(output).extension() == ".png" ||
-                             std::filesystem::path(output).extension() == ".jpg";
-        if (!pngOnly) writeEXR(output, scene.description().integrator->type() == "moment" ? withMoments(out, film) : out, meta);
+        std::string errors;  // outputs that could not be written where asked (each was rescued or reported)
+        if (!pngOnly) {
+            const Image exr = scene.description().integrator->type() == "moment" ? withMoments(out, film) : out;
+            writeOrRescue(output, [&](const std::string& p) { writeEXR(p, exr, meta); }, errors);
+        }
         if (spectral) {
             ImageMetadata spectralMeta = spectralLayoutMetadata();
             spectralMeta.insert(spectralMeta.end(), meta.begin(), meta.end());
             spectralMeta.emplace_back("iris.spectral_bin_width_nm", strCat(spectralBinWidth));
-            writeEXR(spectralOutput, spectral->image(), spectralMeta);
+            writeOrRescue(spectralOutput, [&](const std::string& p) { writeEXR(p, spectral->image(), spectralMeta); }, errors);
         }
         if (!variancePath.empty()) {
             Image var(film.width(), film.height(), 3);
             var.pixels = film.varianceOfMeanImage();
             var.channelNames = {"X", "Y", "Z"};
-            writeEXR(variancePath, var, meta);
+            writeOrRescue(variancePath, [&](const std::string& p) { writeEXR(p, var, meta); }, errors);
         }
-        if (pngOnly || writePng) {
+        if (!ldrPath.empty()) {
             Image ldr(film.width(), film.height(), 3);
             ldr.pixels = film.meanImage();
             if (const auto& tonemap = scene.description().camera.ldr) {  // an ldrfilm: its own tone map
@@ -364,7 +402,11 @@ int main(int argc, char** argv) {
             } else {
                 colors.toDisplay(ldr.pixels.data(), ldr.pixelCount(), filmSpace, display, view);
             }
-            writeLDR(pngOnly ? output : replaceExtension(output, ".png"), ldr);
+            writeOrRescue(ldrPath, [&](const std::string& p) { writeLDR(p, ldr); }, errors);
+        }
+        if (!errors.empty()) {  // one line per output that is not where it was asked
+            std::fprintf(stderr, "%s\n", errors.c_str());
+            return 1;
         }
         std::fprintf(stderr, "%s: %u spp%s in %.2f s, %.3g rays/s, %llu invalid samples%s\n", output.c_str(), st.sppMin,
                      st.sppMax != st.sppMin ? strCat(" (some pixels ", st.sppMax, ")").c_str() : "", st.seconds,

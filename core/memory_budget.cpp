@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/usable_memory.h"
 
 namespace iris {
 
@@ -17,14 +18,29 @@ constexpr const char* kLimitEnv = "IRIS_MEMORY_LIMIT";
 
 std::atomic<uint64_t> gCharged{0};
 std::atomic<uint64_t> gLimit{0};
+std::atomic<bool> gLimitIsDefault{false};
 std::once_flag gLimitFromEnv;
 thread_local MemoryAccount* tCurrent = nullptr;
 
+/// IRIS_MEMORY_LIMIT if set, else the default.
 void readLimitFromEnvironment() {
     std::call_once(gLimitFromEnv, [] {
         const char* v = std::getenv(kLimitEnv);
-        if (v && *v) gLimit = withLocation({}, [&] { return parseByteSize(v); }, strCat(kLimitEnv, ": "));
+        if (v && *v) {
+            gLimit = withLocation({}, [&] { return parseByteSize(v); }, strCat(kLimitEnv, ": "));
+        } else {
+            gLimit = defaultMemoryLimit();
+            gLimitIsDefault = true;
+        }
     });
+}
+
+/// Where the limit came from, for the refusal's message.
+std::string limitOrigin() {
+    if (!gLimitIsDefault) return strCat("the limit is set by --memory-limit or ", kLimitEnv);
+    const UsableMemory m = usableMemory();
+    return strCat("the default limit is ", kDefaultLimitPercent, " % of the ", formatBytes(m.bytes), " of ", m.source,
+                  "; set another with --memory-limit or ", kLimitEnv, ", 0 for none");
 }
 
 }  // namespace
@@ -37,7 +53,10 @@ uint64_t memoryLimit() {
 void setMemoryLimit(uint64_t bytes) {
     readLimitFromEnvironment();  // so that a later first charge does not overwrite this
     gLimit = bytes;
+    gLimitIsDefault = false;
 }
+
+uint64_t defaultMemoryLimit() { return usableMemory().bytes / 100 * kDefaultLimitPercent; }
 
 uint64_t memoryCharged() { return gCharged; }
 
@@ -83,7 +102,7 @@ void charge(uint64_t bytes, std::string_view what, bool hold) {
         const uint64_t after = before + bytes;
         if (limit > 0 && (after < before || after > limit))
             fail(what, " needs ", formatBytes(bytes), ", over the memory limit of ", formatBytes(limit), " (",
-                 formatBytes(before), " already in use; the limit is set by --memory-limit or ", kLimitEnv, ")");
+                 formatBytes(before), " already in use; ", limitOrigin(), ")");
         if (!hold) return;
         if (gCharged.compare_exchange_weak(before, after)) break;
     }

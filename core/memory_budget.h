@@ -4,7 +4,10 @@
 // message instead of being killed by the system (or thrashing it).
 //
 // The limit is set by `render --memory-limit SIZE` or the environment variable IRIS_MEMORY_LIMIT
-// (read once, at the first charge); 0 or unset means no limit. Charges made while a MemoryAccount
+// (read once, at the first charge); 0 means no limit. Unset, it is kDefaultLimitPercent of the
+// memory the process may use (core/usable_memory.h: physical memory, or less under a cgroup limit or
+// `ulimit -v`), so that no scene can exhaust a workstation or cluster node by default (issue 38).
+// Charges made while a MemoryAccount
 // lives on the thread are collected by it; the scene loader hands them to the scene it returns,
 // so they are given back when that scene is destroyed (docs/testing.md, "Resource limits"). A
 // charge outside any account (an image read by `compare`) is checked against the limit, not held.
@@ -17,9 +20,15 @@
 
 namespace iris {
 
+/// The default limit as a share of usableMemory(): half, leaving the other half for what is not
+/// charged (Embree's build temporaries, per-thread arenas, libraries, the operating system's cache).
+inline constexpr uint64_t kDefaultLimitPercent = 50;
+
 /// The limit in bytes (0: none).
 uint64_t memoryLimit();
 void setMemoryLimit(uint64_t bytes);
+/// kDefaultLimitPercent of usableMemory(), the limit when neither the option nor the variable is set.
+uint64_t defaultMemoryLimit();
 /// Bytes charged and not yet given back, in this process.
 uint64_t memoryCharged();
 

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/io/atomic_file.h"
 
 namespace iris {
@@ -133,19 +133,6 @@ void take(const std::string& in, size_t& pos, T* p, size_t n) {
 
 std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
 
-std::string readWholeFile(const std::string& path, uint64_t maxBytes) {
-    std::ifstream f(path, std::ios::binary | std::ios::ate);
-    if (!f) fail(path, ": cannot open checkpoint");
-    const std::streamoff size = f.tellg();
-    if (size < 0) fail(path, ": cannot read checkpoint");
-    if (uint64_t(size) > maxBytes) fail(path, ": checkpoint is ", size, " bytes, more than this film's ", maxBytes, " (not a checkpoint of this render)");
-    std::string data(size_t(size), '\0');
-    f.seekg(0);
-    f.read(data.data(), size);
-    if (!f) fail(path, ": cannot read checkpoint");
-    return data;
-}
-
 /// Bytes of a checkpoint of a w×h film without its header.
 uint64_t payloadBytes(uint64_t pixels) {
     return kFixedPrefix + 2 * sizeof(int32_t) + (3 * sizeof(Film::FixedSum) + 3 * sizeof(double) + sizeof(uint32_t)) * pixels + 4;
@@ -204,7 +191,7 @@ void Film::takeBody(const std::string& in, size_t pos) {
 }
 
 void Film::load(const std::string& path, const std::string& key) {
-    const std::string in = readWholeFile(path, payloadBytes(count_.size()) + kMaxHeader);
+    const std::string in = readInputFile(path, "checkpoint", payloadBytes(count_.size()) + kMaxHeader);
     size_t pos = 0;
     const std::string header = checkedHeader(in, path, pos);
     checkSizeAndChecksum(in, path, width_, height_, header.size());
@@ -217,7 +204,7 @@ void Film::load(const std::string& path, const std::string& key) {
 }
 
 Film Film::read(const std::string& path, std::string* header) {
-    const std::string in = readWholeFile(path, payloadBytes(uint64_t(1) << 28) + kMaxHeader);
+    const std::string in = readInputFile(path, "checkpoint", payloadBytes(uint64_t(1) << 28) + kMaxHeader);
     size_t pos = 0;
     *header = checkedHeader(in, path, pos);
     int32_t w = 0, h = 0;

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace iris {
 
@@ -38,6 +39,11 @@ std::string settingsField(const std::string& key, const std::string& name) {
 }
 
 bool isFilmStateFile(const std::string& path) {
+    try {
+        checkInputFile(path, "film state");  // a FIFO's open would wait; the image reader then says what is wrong
+    } catch (const Error&) {
+        return false;
+    }
     std::ifstream f(path, std::ios::binary);
     char magic[7] = {};
     f.read(magic, 7);

@@ -12,6 +12,7 @@
 #include "core/cylinder_intersection.h"
 #include "core/sphere_intersection.h"
 #include "render/instance_transform.h"
+#include "render/scene_memory.h"
 
 namespace iris {
 
@@ -176,6 +177,7 @@ struct Scene::InstanceData {
 };
 
 Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
+    geometryMemory_ = chargeSceneGeometry(desc_);  // before Embree allocates (render/scene_memory.h)
     RTCDevice device = rtcNewDevice("verbose=0");
     if (!device) fail("cannot create the Embree device (error ", int(rtcGetDeviceError(nullptr)), ")");
     rtcSetDeviceErrorFunction(device, embreeError, nullptr);

@@ -57,6 +57,7 @@ private:
     void* device_ = nullptr;  // RTCDevice
     void* scene_ = nullptr;   // RTCScene
     MaterialPtr defaultMaterial_;
+    std::shared_ptr<const MemoryReservation> geometryMemory_;  // the Embree estimate charged to the budget
 };
 
 }  // namespace iris

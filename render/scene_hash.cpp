@@ -2,10 +2,9 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace iris {
 
@@ -20,9 +19,7 @@ void fnv1a(uint64_t& h, const std::string& bytes) {
 }  // namespace
 
 std::string sceneHash(const std::string& scenePath, const std::map<std::string, std::string>& defines) {
-    std::ifstream f(scenePath, std::ios::binary);
-    if (!f) fail(scenePath, ": cannot read scene file");
-    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const std::string text = readInputFile(scenePath, "scene file", kMaxSceneFileBytes);
     uint64_t h = 0xcbf29ce484222325ull;
     fnv1a(h, text);
     for (const auto& [name, value] : defines) fnv1a(h, std::string(1, '\0') + name + "=" + value);  // sorted by name

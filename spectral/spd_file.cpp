@@ -1,17 +1,17 @@
 // ".spd" files: one "lambda value" pair per line; '#' or ';' start a comment (whole line or
 // trailing). Wavelengths are nm; a wavelength below 100 is read as micrometres (× 1000).
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/spectrum_factory.h"
 
 namespace iris {
 
 SpectrumPtr loadSpdFile(const std::string& path, SpectrumKind kind) {
-    std::ifstream in(path);
-    if (!in) fail(path, ": cannot open spectrum file");
+    // Read whole through the input-file checks: a device (/dev/zero) would grow one line without end.
+    std::istringstream in(readInputFile(path, "spectrum file", kMaxSpectrumFileBytes));
     std::vector<float> lambdas, values;
     std::string line;
     int lineNo = 0;

@@ -95,6 +95,13 @@ void raiseInjectedSignalBeforeRename() {
     ::raise(name == "KILL" ? SIGKILL : name == "TERM" ? SIGTERM : SIGINT);
 }
 
+/// IRIS_FAULT_UNWRITABLE=PATH: an atomic write of exactly PATH fails, as on a file system remounted
+/// read-only after the output was checked (the fallback tests of core/io/output_file.h).
+void failIfInjectedUnwritable(const std::string& path) {
+    const char* v = std::getenv("IRIS_FAULT_UNWRITABLE");
+    if (v && path == v) failErrno(path, "cannot create file", EROFS);
+}
+
 /// Make the finished temporary durable and move it over `path`.
 void commit(TempFile& tmp, const std::string& path) {
     raiseInjectedSignalBeforeRename();
@@ -115,6 +122,7 @@ std::string atomicTempPath(const std::string& path) {
 }
 
 void writeFileAtomically(const std::string& path, std::string_view bytes) {
+    failIfInjectedUnwritable(path);
     TempFile tmp(atomicTempPath(path));
     const int fd = ::open(tmp.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {
@@ -132,6 +140,7 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
 }
 
 void writeFileAtomicallyWith(const std::string& path, const std::function<void(const std::string& tempPath)>& writeTemp) {
+    failIfInjectedUnwritable(path);
     TempFile tmp(atomicTempPath(path));
     writeTemp(tmp.path());
     commit(tmp, path);

@@ -11,7 +11,8 @@
 // IRIS_FAULT_KILL_WRITING=N makes a process writing through writeFileAtomically (checkpoints,
 // table caches, PNG) kill itself with SIGKILL once N bytes of the temporary are written, leaving
 // the temporary behind as a kill -9 would; IRIS_FAULT_SIGNAL_BEFORE_RENAME=INT|TERM|KILL raises that
-// signal when the temporary is complete, just before the rename (docs/testing.md).
+// signal when the temporary is complete, just before the rename; IRIS_FAULT_UNWRITABLE=PATH makes
+// every atomic write of exactly PATH fail with EROFS (docs/testing.md).
 #pragma once
 
 #include <functional>

@@ -28,6 +28,7 @@
 #include "core/memory_budget.h"
 #include "core/io/atomic_file.h"
 #include "core/io/exr_header_check.h"
+#include "core/input_file.h"
 #include "core/io/oiio_loader.h"
 #include "core/io/png_header_check.h"
 #include "core/io/png_writer.h"
@@ -136,19 +137,30 @@ void writeLDR(const std::string& path, const Image& img) {
 
 namespace {
 
-void checkReadable(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, ": file not found");
-    if (std::filesystem::is_directory(path, ec)) fail(path, ": is a directory, not an image");
-}
+/// An image may claim at most this many samples per byte of its file, plus kSmallImageSamples: a
+/// header claiming more is refused before anything is allocated or decoded (found by fuzz_image: 134
+/// bytes claiming > 1 GB; issue 38: a valid 97 KB DWAB EXR of 16384^2 pixels, 3 GiB as floats).
+/// DEFLATE, the densest general coder of these formats, expands at most 1032:1 (RFC 1951: a
+/// 258-byte match in 2 bits at best); OpenEXR's PIZ and DWA can go further only on images that are
+/// (nearly) constant, which as textures or environment maps this large are better written small. The
+/// allowance of 2^26 samples (256 MiB as floats) keeps such images up to 4096^2 RGBA readable.
+constexpr uint64_t kSamplesPerFileByte = 2048;
+constexpr uint64_t kSmallImageSamples = uint64_t(1) << 26;
 
-void checkSize(const std::string& path, long long w, long long h, long long channels) {
+/// The image's size from its header, checked against the pixel limit, the file's size and the
+/// memory budget (charged) before the pixels are allocated.
+void checkSize(const std::string& path, long long w, long long h, long long channels, uint64_t fileBytes) {
     if (w <= 0 || h <= 0 || channels <= 0) fail(path, ": unsupported image size ", w, "x", h, "x", channels);
     // Each factor first, so that the product cannot overflow.
     if (w > (long long)kMaxPixels || h > (long long)kMaxPixels || w * h > (long long)kMaxPixels)
         fail(path, ": image of ", w, "x", h, " pixels exceeds the limit of 2^28 pixels");
     if (channels > 1024) fail(path, ": absurd channel count ", channels);
-    chargeMemory(uint64_t(w * h * channels) * sizeof(float), strCat(path, ": image of ", w, "x", h, "x", channels, " floats"));
+    const uint64_t samples = uint64_t(w) * uint64_t(h) * uint64_t(channels);
+    if (samples > kSamplesPerFileByte * fileBytes + kSmallImageSamples)
+        fail(path, ": header claims ", w, "x", h, "x", channels, " samples (", formatBytes(samples * sizeof(float)),
+             " as floats), more than a ", fileBytes, "-byte file can hold (at most ", kSamplesPerFileByte,
+             " samples per byte beyond the first 2^26)");
+    chargeMemory(samples * sizeof(float), strCat(path, ": image of ", w, "x", h, "x", channels, " floats"));
 }
 
 /// True if the file is an OpenEXR file without deep data: OpenEXR's test of the magic number
@@ -191,7 +203,7 @@ struct ExrChannelKey {
 /// false (nothing read) for what this path does not handle the same way as OpenImageIO: deep
 /// data, subsampled channels and UINT channels (OpenImageIO normalises those); the caller then
 /// reads the file through the module.
-bool readExrDirect(const std::string& path, Image& img) {
+bool readExrDirect(const std::string& path, uint64_t fileBytes, Image& img) {
     try {
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
@@ -204,7 +216,7 @@ bool readExrDirect(const std::string& path, Image& img) {
         }
         const Imath::Box2i dw = header.dataWindow();
         const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-        checkSize(path, w, h, (long long)keys.size());
+        checkSize(path, w, h, (long long)keys.size(), fileBytes);
         std::sort(keys.begin(), keys.end());
 
         img = Image();
@@ -243,7 +255,7 @@ bool readExrDirect(const std::string& path, Image& img) {
 }
 
 /// Read any image through OpenImageIO (the module).
-Image readThroughModule(const std::string& path, ImageFileInfo* info) {
+Image readThroughModule(const std::string& path, uint64_t fileBytes, ImageFileInfo* info) {
     checkPngChunkLengths(path);  // before libpng allocates what a chunk claims
     const OiioModule& oiio = oiioModule(path, "read this image");
     char err[1024] = "";
@@ -253,17 +265,7 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
     // Closes the handle on every exit, including the errors below.
     const std::unique_ptr<void, iris_oiio_close_fn> guard(handle, oiio.close);
     if (spec.depth > 1) fail(path, ": unsupported image size ", spec.width, "x", spec.height, "x", spec.channels);
-    checkSize(path, spec.width, spec.height, spec.channels);
-    // A header claiming more samples than the file's bytes can encode is refused before the
-    // allocation (found by fuzz_image: 134 bytes claiming > 1 GB). DEFLATE, the densest coder of the
-    // formats read here, expands at most 1032:1 (RFC 1951: a 258-byte match in 2 bits at best); allow
-    // 2048 samples per byte plus 2^20 for the headers of tiny images.
-    std::error_code ec;
-    const uint64_t fileBytes = std::filesystem::file_size(path, ec);
-    const uint64_t samples = uint64_t(spec.width) * uint64_t(spec.height) * uint64_t(spec.channels);
-    if (!ec && samples > 2048 * fileBytes + (uint64_t(1) << 20))
-        fail(path, ": header claims ", spec.width, "x", spec.height, "x", spec.channels, " samples, more than a ", fileBytes,
-             "-byte file can hold");
+    checkSize(path, spec.width, spec.height, spec.channels, fileBytes);
 
     Image img;
     img.width = spec.width;
@@ -283,31 +285,35 @@ Image readThroughModule(const std::string& path, ImageFileInfo* info) {
     return img;
 }
 
+/// The checks every image read starts with, before OpenEXR or OpenImageIO sees the file: a regular
+/// file (core/input_file.h; a device made OpenImageIO's format probe spin, issue 38) whose EXR
+/// header sizes fit in it. Returns the file's size.
+uint64_t checkImageFile(const std::string& path) {
+    const uint64_t fileBytes = checkInputFile(path, "image");
+    checkExrHeaderSizes(path, kMaxPixels);
+    return fileBytes;
+}
+
 }  // namespace
 
 Image readImage(const std::string& path, ImageFileInfo* info) {
-    checkReadable(path);
-    checkExrHeaderSizes(path, kMaxPixels);
+    const uint64_t fileBytes = checkImageFile(path);
     if (isFlatExr(path)) {
         Image img;
-        if (readExrDirect(path, img)) {
+        if (readExrDirect(path, fileBytes, img)) {
             if (info) *info = ImageFileInfo{};  // HALF/FLOAT: not an integer format
             return img;
         }
     }
-    return readThroughModule(path, info);
+    return readThroughModule(path, fileBytes, info);
 }
 
 Image readImageWithOpenImageIO(const std::string& path, ImageFileInfo* info) {
-    checkReadable(path);
-    checkExrHeaderSizes(path, kMaxPixels);
-    return readThroughModule(path, info);
+    return readThroughModule(path, checkImageFile(path), info);
 }
 
 ImageMetadata readEXRMetadata(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, ": file not found");
-    checkExrHeaderSizes(path, kMaxPixels);
+    checkImageFile(path);
     ImageMetadata meta;
     try {
         Imf::InputFile file(path.c_str());

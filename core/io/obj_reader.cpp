@@ -4,7 +4,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
-#include "core/io/whole_file.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 
 namespace iris {
@@ -164,7 +164,7 @@ TriangleMesh parseObj(const std::string& text, const std::string& name) { return
 // OBJ has no header that counts its vertices and faces: the file is charged before it is read, the
 // mesh (at most a small multiple of the file) when parsed, before the scene keeps it.
 TriangleMesh readObj(const std::string& path) {
-    TriangleMesh m = parseObj(readWholeFile(path, "OBJ file"), path);
+    TriangleMesh m = parseObj(readInputFile(path, "OBJ file"), path);
     const uint64_t held = m.positions.size() * sizeof(vec3) + m.normals.size() * sizeof(vec3) +
                           m.uvs.size() * sizeof(vec2) + m.indices.size() * sizeof(uint32_t);
     chargeMemory(held, strCat(path, ": ", m.positions.size(), " vertices and ", m.triangleCount(), " triangles"));

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cstring>
 #include "core/error.h"
-#include "core/io/whole_file.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 #include "core/xml/xml_values.h"
 
@@ -424,6 +424,6 @@ private:
 
 TriangleMesh parsePly(const std::string& data, const std::string& name) { return PlyParser(data, name).parse(); }
 
-TriangleMesh readPly(const std::string& path) { return parsePly(readWholeFile(path, "PLY file"), path); }
+TriangleMesh readPly(const std::string& path) { return parsePly(readInputFile(path, "PLY file"), path); }
 
 }  // namespace iris

@@ -5,7 +5,7 @@
 #include <zlib.h>
 
 #include "core/error.h"
-#include "core/io/whole_file.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 
 namespace iris {
@@ -19,7 +19,7 @@ constexpr uint32_t kHasNormals = 0x0001, kHasUVs = 0x0002, kHasColors = 0x0008, 
 // zlib's deflate cannot compress better than about 1032:1; anything claiming more is corrupt.
 constexpr uint64_t kMaxZlibRatio = 1100;
 
-std::string readAll(const std::string& path) { return readWholeFile(path, "serialized mesh file"); }
+std::string readAll(const std::string& path) { return readInputFile(path, "serialized mesh file"); }
 
 template <typename T>
 T readLE(const std::string& d, size_t at) {

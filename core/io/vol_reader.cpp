@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
-#include "core/io/whole_file.h"
+#include "core/input_file.h"
 #include "core/memory_budget.h"
 
 namespace iris {
@@ -120,6 +120,6 @@ VolumeGridData parseVol(const std::string& b, const std::string& name) {
     return g;
 }
 
-VolumeGridData readVolFile(const std::string& path) { return parseVol(readWholeFile(path, ".vol grid file"), path); }
+VolumeGridData readVolFile(const std::string& path) { return parseVol(readInputFile(path, ".vol grid file"), path); }
 
 }  // namespace iris

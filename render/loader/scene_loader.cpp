@@ -155,12 +155,17 @@ SceneDescription build(ParsedScene parsed) {
 
 }  // namespace
 
+// The parser charges what the parsed tree holds (core/xml/xml_parser.cpp); `parsing` collects it and
+// gives it back once the scene has been built from the tree (build's own account keeps what the
+// scene holds).
 SceneDescription loadScene(const std::string& path, const std::map<std::string, std::string>& defines) {
+    MemoryAccount parsing;
     return build(parseSceneFile(path, defines));
 }
 
 SceneDescription loadSceneFromString(const std::string& xml, const std::string& baseDir,
                                      const std::map<std::string, std::string>& defines) {
+    MemoryAccount parsing;
     return build(parseSceneString(xml, baseDir, defines));
 }
 

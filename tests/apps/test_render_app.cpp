@@ -218,10 +218,10 @@ TEST(RenderApp, FailedOutputWriteKeepsThePreviousImage) {
     EXPECT_EQ(readImage(out).pixels, before);
     for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(out).parent_path()))
         EXPECT_EQ(e.path().string().find(out + ".tmp"), std::string::npos) << e.path();
-    // An output folder that cannot exist.
+    // An output folder that cannot exist: a usage error, found before the scene is loaded (issue 38).
     const RunResult r2 = runCommand(appPath("render") + " " + scene + " -o " + scene + "/x.exr --spp 1 --quiet --no-png");
-    EXPECT_EQ(r2.exitCode, 1);
-    EXPECT_NE(r2.stderrText.find(scene + "/x.exr"), std::string::npos) << r2.stderrText;
+    EXPECT_EQ(r2.exitCode, 2);
+    EXPECT_NE(r2.stderrText.find(scene + "/x.exr: " + scene + " is not a folder"), std::string::npos) << r2.stderrText;
 }
 
 TEST(RenderApp, BadInputGivesOneLineErrorAndNonZeroExit) {

@@ -19,10 +19,11 @@ using namespace iris;
 
 namespace {
 
-/// Sets a limit for one test and restores "no limit" after it.
+/// Sets a limit for one test and restores the one before (the default, in a fresh process) after it.
 struct ScopedLimit {
-    explicit ScopedLimit(uint64_t bytes) { setMemoryLimit(bytes); }
-    ~ScopedLimit() { setMemoryLimit(0); }
+    explicit ScopedLimit(uint64_t bytes) : before(memoryLimit()) { setMemoryLimit(bytes); }
+    ~ScopedLimit() { setMemoryLimit(before); }
+    uint64_t before;
 };
 
 std::string errorOf(const std::function<void()>& f) {

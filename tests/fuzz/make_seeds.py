@@ -186,6 +186,30 @@ SCENE_SEEDS = {
     <emitter type="directional"><vector name="direction" x="0" y="-1" z="0"/><rgb name="irradiance" value="1, 2, 3"/></emitter>
 </scene>
 ''',
+    # Images through the bitmap texture and the envmap (the renderer's entry point, readImage), and
+    # the hostile names of the scene folder: zero (a link to /dev/zero), fifo (a FIFO), dir (a folder),
+    # refused by core/input_file.h before any reader sees them (issue 38).
+    'images.xml': '''<scene version="3.0.0">
+    <emitter type="envmap"><string name="filename" value="env.exr"/><float name="scale" value="0.5"/></emitter>
+    <shape type="sphere"><bsdf type="diffuse"><texture type="bitmap" name="reflectance">
+        <string name="filename" value="tex.png"/><string name="filter_type" value="nearest"/></texture></bsdf></shape>
+</scene>
+''',
+    'hostile_include.xml': '''<scene version="3.0.0">
+    <include filename="fifo"/>
+</scene>
+''',
+    'hostile_folder.xml': '''<scene version="3.0.0">
+    <shape type="sphere"><bsdf type="diffuse"><texture type="bitmap" name="reflectance">
+        <string name="filename" value="dir"/></texture></bsdf></shape>
+</scene>
+''',
+    'hostile_names.xml': '''<scene version="3.0.0">
+    <emitter type="envmap"><string name="filename" value="zero"/></emitter>
+    <shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" filename="/dev/zero"/></bsdf></shape>
+    <shape type="ply"><string name="filename" value="fifo"/></shape>
+</scene>
+''',
 }
 
 

@@ -46,12 +46,27 @@ inline std::string takeFile(const std::string& path) {
     return s;
 }
 
-/// Run a shell command line, capturing its stdout and stderr.
-inline RunResult runCommand(const std::string& cmd) {
+/// `text` as one single-quoted word of the shell.
+inline std::string shellQuote(const std::string& text) {
+    std::string q = "'";
+    for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+/// Seconds a command of runCommand may run before it is killed (issue 38: a hang must fail its test,
+/// not stall CI): generous for the slowest app test (a few seconds on this 2-core machine, ten times
+/// that under ASan), short against CTest's own per-test timeout (CMakeLists.txt).
+inline constexpr int kCommandTimeoutSeconds = 300;
+
+/// Run a shell command line, capturing its stdout and stderr. A command still running after
+/// `timeoutSeconds` is killed with its children (coreutils' timeout: TERM, then KILL 5 s later) and
+/// reports exit code 124.
+inline RunResult runCommand(const std::string& cmd, int timeoutSeconds = kCommandTimeoutSeconds) {
     const std::string base = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/iris_test_" +
                              std::to_string(::getpid());
     const std::string outFile = base + "_stdout.txt", errFile = base + "_stderr.txt";
-    const int status = std::system((cmd + " >" + outFile + " 2>" + errFile).c_str());
+    const std::string guarded = "timeout -k 5 " + std::to_string(timeoutSeconds) + " /bin/sh -c " + shellQuote(cmd);
+    const int status = std::system((guarded + " >" + outFile + " 2>" + errFile).c_str());
     RunResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.stdoutText = takeFile(outFile);
