@@ -97,8 +97,10 @@ SampledSpectrum PbrBSDF::surface(const vec3& wo, const vec3& wi) const {
         f = baseWeight * p_.base * (p_.transmission * spec * (1.0f - p_.metallic));  // thin-walled specular_btdf
     }
     if (p_.sheenMax > 0) {
-        const float scale = std::min(1.0f - p_.sheenMax * sheenAlbedo(wo.z, p_.sheenRoughness),
-                                     1.0f - p_.sheenMax * sheenAlbedo(std::abs(wi.z), p_.sheenRoughness));
+        // KHR_materials_sheen's albedo scaling, clamped at 0: E exceeds 1 at grazing angles of the
+        // smoothest sheens, where the unclamped formula would make the base negative.
+        const float scale = std::max(0.0f, std::min(1.0f - p_.sheenMax * sheenAlbedo(wo.z, p_.sheenRoughness),
+                                                    1.0f - p_.sheenMax * sheenAlbedo(std::abs(wi.z), p_.sheenRoughness)));
         f = f * scale;
         if (!transmit) f += p_.sheenColor * sheenBrdf(p_.sheenAlpha, l, wo);
     }

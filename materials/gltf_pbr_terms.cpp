@@ -8,10 +8,10 @@
 
 namespace iris::gltf {
 
-float ggxD(float alpha, float cosH) {
-    if (cosH <= 0) return 0.0f;  // χ⁺(n·h)
+float ggxD(float alpha, const vec3& h) {
+    if (h.z <= 0) return 0.0f;  // χ⁺(n·h)
     const float a2 = alpha * alpha;
-    const float d = cosH * cosH * (a2 - 1.0f) + 1.0f;
+    const float d = h.x * h.x + h.y * h.y + a2 * h.z * h.z;  // = (n·h)²(α² − 1) + 1 for |h| = 1
     return a2 / (kPi * d * d);  // Appendix B.3.2, microfacet distribution
 }
 
@@ -28,7 +28,7 @@ float ggxV(float alpha, float cosL, float cosV) {
 
 float specularBrdf(float alpha, const vec3& l, const vec3& v) {
     const vec3 h = glm::normalize(l + v);
-    return ggxV(alpha, l.z, v.z) * ggxD(alpha, h.z);
+    return ggxV(alpha, l.z, v.z) * ggxD(alpha, h);
 }
 
 float schlickWeight(float vDotH) {
@@ -78,7 +78,7 @@ const AlbedoTable& albedoTable() {
 
 float charlieV(float alpha, float cosL, float cosV) {
     alpha = std::max(alpha, kMinSheenAlpha);
-    const float l = std::abs(cosL), v = std::abs(cosV);
+    const float l = std::min(std::abs(cosL), 1.0f), v = std::min(std::abs(cosV), 1.0f);  // Λ's fit needs 1 − cos ≥ 0
     if (l == 0 || v == 0) return 0.0f;
     // KHR_materials_sheen "Sheen visibility": the height-correlated G of the Estevez-Kulla Λ fit
     // (materials/cloth_distributions.h, shared with the cloth material) over 4 (n·v)(n·l).

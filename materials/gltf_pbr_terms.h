@@ -7,8 +7,10 @@
 
 namespace iris::gltf {
 
-/// Trowbridge-Reitz (GGX) D(h) = α² χ⁺(n·h) / (π ((n·h)²(α² − 1) + 1)²)  (Appendix B.3.2).
-float ggxD(float alpha, float cosH);
+/// Trowbridge-Reitz (GGX) D(h) = α² χ⁺(n·h) / (π ((n·h)²(α² − 1) + 1)²)  (Appendix B.3.2), for a
+/// unit half vector h, whose (n·h)²(α² − 1) + 1 is evaluated as h.x² + h.y² + α² h.z² (the same
+/// value without the cancellation of 1 − (n·h)² in float when α² is below its precision).
+float ggxD(float alpha, const vec3& h);
 
 /// The separable Smith visibility V = G/(4 |n·l| |n·v|) with
 /// G = G1(l) G1(v), G1(x) = 2|n·x| / (|n·x| + sqrt(α² + (1 − α²)(n·x)²))  (Appendix B.3.2).

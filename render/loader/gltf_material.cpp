@@ -128,6 +128,8 @@ ShapeMaterial MaterialCache::build(int index) {
     p.alphaMode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
     p.alphaCutoff = float(m.alphaCutoff);
     out.doubleSided = m.doubleSided;
+    if (m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0)
+        doc_.warnings.push_back(strCat(doc_.path, ": ", path, ": normal and occlusion textures are not applied (docs/gltf.md)"));
     const std::string ext = path + "/extensions/";
     if (const auto* e = extension(m, "KHR_materials_ior")) {
         p.ior = float(number(*e, "ior", 1.5));

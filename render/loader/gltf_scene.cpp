@@ -27,8 +27,12 @@ mat4 localMatrix(const Document& doc, int index) {
 
 namespace {
 
+/// Deeper hierarchies are refused (the walk is recursive; no real asset nests this deep).
+constexpr int kMaxDepth = 256;
+
 void visit(const Document& doc, int node, const mat4& parent, std::vector<bool>& onPath, std::vector<PlacedNode>& out,
-           const std::string& from) {
+           const std::string& from, int depth = 0) {
+    if (depth > kMaxDepth) failAtPath(doc, from, "the node hierarchy is deeper than ", kMaxDepth, " levels");
     if (node < 0 || size_t(node) >= doc.model.nodes.size()) failAtPath(doc, from, "node ", node, " does not exist");
     if (onPath[size_t(node)]) failAtPath(doc, from, "node ", node, " is its own ancestor (the hierarchy must be a tree)");
     if (out.size() > 4 * doc.model.nodes.size() + 16)
@@ -37,7 +41,7 @@ void visit(const Document& doc, int node, const mat4& parent, std::vector<bool>&
     const mat4 world = parent * localMatrix(doc, node);
     out.push_back({node, world});
     const std::vector<int>& children = doc.model.nodes[size_t(node)].children;
-    for (size_t i = 0; i < children.size(); ++i) visit(doc, children[i], world, onPath, out, strCat("/nodes/", node, "/children/", i));
+    for (size_t i = 0; i < children.size(); ++i) visit(doc, children[i], world, onPath, out, strCat("/nodes/", node, "/children/", i), depth + 1);
     onPath[size_t(node)] = false;
 }
 
