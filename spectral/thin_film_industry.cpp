@@ -59,8 +59,9 @@ dvec3 khrIridescentFresnel(double outsideIor, double filmIor, const dvec3& baseF
     dvec3 I;
     const double OPD = 2.0 * filmIor * thicknessNm * cosTheta2;
     for (int c = 0; c < 3; ++c) {
-        // Second interface: the base index from F0 (+1e−4 guards F0 = 1), Schlick at θ2.
-        const double baseIor = fresnel0ToIor(baseF0[c] + 0.0001);
+        // Second interface: the base index from F0, Schlick at θ2. The README adds 1e−4 to F0 as a
+        // guard; that divides by zero from F0 = 0.9999 on, so the sum is also capped at 0.9999.
+        const double baseIor = fresnel0ToIor(std::min(baseF0[c] + 0.0001, 0.9999));
         const double R23 = schlickFresnel(iorToFresnel0(baseIor, filmIor), cosTheta2);
         const double phi23 = baseIor < filmIor ? kPiD : 0.0;
         const double phi = phi21 + phi23;

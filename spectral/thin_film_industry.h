@@ -35,6 +35,7 @@ dvec3 khrSensitivity(double opdNm, const dvec3& shift);
 
 /// KHR_materials_iridescence's iridescent_fresnel(outsideIor, iridescenceIor, baseF0, thickness,
 /// cosθ1) exactly as the README's "Iridescence Fresnel" section writes it: linear Rec.709 RGB.
+/// One guard is added: F0 + 0.0001 (the README's) is capped at 0.9999 (F0 ≥ 0.9999 divides by zero).
 dvec3 khrIridescentFresnel(double outsideIor, double filmIor, const dvec3& baseF0, double thicknessNm, double cosTheta1);
 
 /// Gulbrandsen 2014 (JCGT 3(4), §3): n = g·n_min(r) + (1 − g)·n_max(r) with n_min = (1 − r)/(1 + r),

@@ -52,7 +52,7 @@ py::array_t<complexd> gulbrandsen(const py::array& r, const py::array& g) {
     if (rr.shape(0) != gg.shape(0)) fail("reflectivity and edge_tint must have the same length");
     std::vector<complexd> out(size_t(rr.shape(0)));
     for (py::ssize_t i = 0; i < rr.shape(0); ++i) {
-        if (!(rr.data()[i] >= 0 && rr.data()[i] <= 0.99)) fail("reflectivity[", i, "] = ", rr.data()[i], " (expected in [0, 0.99])");
+        if (!(rr.data()[i] >= 0 && rr.data()[i] <= 1)) fail("reflectivity[", i, "] = ", rr.data()[i], " (expected in [0, 1])");
         if (!(gg.data()[i] >= 0 && gg.data()[i] <= 1)) fail("edge_tint[", i, "] = ", gg.data()[i], " (expected in [0, 1])");
         out[size_t(i)] = gulbrandsenIor(rr.data()[i], gg.data()[i]);
     }

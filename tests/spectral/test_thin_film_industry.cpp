@@ -37,6 +37,15 @@ TEST(ThinFilmIndustry, KhrThickFilmReducesToTheIncoherentTerm) {
         }
 }
 
+TEST(ThinFilmIndustry, KhrIsFiniteForAPerfectMirrorBase) {
+    // The README's guard F0 + 0.0001 divides by zero at F0 = 0.9999; iris caps it (a documented addition).
+    for (double f0 : {0.9999, 1.0})
+        for (double d : {0.0, 300.0}) {
+            const dvec3 F = khrIridescentFresnel(1.0, 1.5, dvec3(f0), d, 0.7);
+            for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(F[c])) << f0 << " " << d;
+        }
+}
+
 TEST(ThinFilmIndustry, KhrTotalInternalReflectionIsOne) {
     // A film less dense than the outside medium reflects totally beyond its critical angle.
     const dvec3 F = khrIridescentFresnel(1.5, 1.2, dvec3(0.04), 300, 0.3);

@@ -180,7 +180,8 @@ def khr_iridescence_rgb(film_ior, thickness_nm, cos_theta, base_f0, outside_ior=
 def gulbrandsen_ior(reflectivity, edge_tint) -> np.ndarray:
     """Gulbrandsen 2014 ("Artist Friendly Metallic Fresnel", JCGT 3(4)): the complex index n + ik
     of a metal whose normal-incidence reflectivity is `reflectivity` and edge tint `edge_tint`
-    (both in [0, 1]; reflectivity at most 0.99), broadcast together."""
+    (both in [0, 1]; reflectivity is clamped to 0.99, as in spectral/thin_film_industry.h),
+    broadcast together."""
     r = real_array("reflectivity", reflectivity)
     g = real_array("edge_tint", edge_tint)
     try:
