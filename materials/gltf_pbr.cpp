@@ -70,6 +70,7 @@ private:
         r.filmIor = p_.iridescenceIor;
         r.edgeTint = p_.edgeTint;
         r.mode = p_.rgbMode;
+        r.doubleSided = p_.doubleSided;
         r.opacity = opacity(q, vc.a);
         return r;
     }
@@ -111,6 +112,7 @@ std::shared_ptr<Material> createPbr(const Properties& pr) {
     p.thicknessMax = p.thicknessMin = pr.getFloat("iridescence_thickness", 400.0f);
     if (!(p.thicknessMax >= 0)) failAt(pr.locationOf("iridescence_thickness"), "gltf_pbr: iridescence_thickness must be >= 0 nm");
     p.edgeTint = pr.has("edge_tint") ? unit("edge_tint", 1.0f) : -1.0f;
+    p.doubleSided = pr.getBool("double_sided", true);
     p.rgbMode = withLocation(pr.locationOf("rgb_mode"), [&] { return parseThinFilmRGBMode(pr.getString("rgb_mode", "point")); });
     return std::make_shared<PbrMaterial>(std::move(p));
 }

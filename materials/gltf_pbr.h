@@ -63,6 +63,9 @@ struct PbrParams {
     float edgeTint = -1.0f;
     ThinFilmRGBMode rgbMode = ThinFilmRGBMode::Exact;
     bool vertexColor = true;  // multiply COLOR_0 of the mesh into the base colour
+    /// glTF's doubleSided (§3.9.5): lit from both sides. A single-sided material is culled from
+    /// behind, as rasterizers cull back faces: light passes through it unchanged.
+    bool doubleSided = false;
 };
 
 /// The material of `params` (no validation: the loader and the plugin check their inputs).

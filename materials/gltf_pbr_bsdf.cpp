@@ -44,7 +44,7 @@ PbrBSDF::PbrBSDF(const PbrPoint& p)
 uint32_t PbrBSDF::flags() const {
     uint32_t f = kBSDFReflection | kBSDFGlossy | kBSDFDiffuse;
     if (p_.transmission > 0 && p_.metallic < 1) f |= kBSDFTransmission;
-    if (p_.opacity < 1) f |= kNullLobe;
+    if (p_.opacity < 1 || !p_.doubleSided) f |= kNullLobe;
     return f;
 }
 
@@ -112,9 +112,14 @@ SampledSpectrum PbrBSDF::surface(const vec3& wo, const vec3& wi) const {
     return f;
 }
 
-SampledSpectrum PbrBSDF::eval(const vec3& wo, const vec3& wi, TransportMode) const {
+SampledSpectrum PbrBSDF::evalFront(const vec3& wo, const vec3& wi) const {
     if (wo.z <= 0 || wi.z == 0) return SampledSpectrum(p_.base.size());
     return surface(wo, wi) * p_.opacity;
+}
+
+SampledSpectrum PbrBSDF::eval(const vec3& wo, const vec3& wi, TransportMode) const {
+    if (wo.z < 0 && p_.doubleSided) return evalFront(-wo, -wi);  // mirrored: −w has the same angle to −n
+    return evalFront(wo, wi);
 }
 
 float PbrBSDF::surfacePdf(const vec3& wo, const vec3& wi) const {
@@ -127,21 +132,36 @@ float PbrBSDF::surfacePdf(const vec3& wo, const vec3& wi) const {
            lobeProb_[kCoat] * coat_.pdf(wo, h) * jac;
 }
 
-float PbrBSDF::pdf(const vec3& wo, const vec3& wi, TransportMode) const {
+float PbrBSDF::pdfFront(const vec3& wo, const vec3& wi) const {
     if (wo.z <= 0 || wi.z == 0) return 0.0f;
     return p_.opacity * surfacePdf(wo, wi);
 }
 
+float PbrBSDF::pdf(const vec3& wo, const vec3& wi, TransportMode) const {
+    if (wo.z < 0 && p_.doubleSided) return pdfFront(-wo, -wi);
+    return pdfFront(wo, wi);
+}
+
+std::optional<BSDFSample> PbrBSDF::passThrough(const vec3& wo, float weight, float prob) const {
+    BSDFSample s;
+    s.wi = -wo;
+    s.pdf = prob;
+    s.f = SampledSpectrum(p_.base.size(), weight / std::abs(wo.z));  // f·|cosθi|/pdf = weight/prob
+    s.flags = kNullLobe;
+    return s;
+}
+
 std::optional<BSDFSample> PbrBSDF::sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const {
-    if (wo.z <= 0) return std::nullopt;
-    if (uc >= p_.opacity) {  // pass-through (alpha coverage): wi = −wo, carrying 1 − opacity
-        BSDFSample s;
-        s.wi = -wo;
-        s.pdf = 1.0f - p_.opacity;
-        s.f = SampledSpectrum(p_.base.size(), (1.0f - p_.opacity) / wo.z);
-        s.flags = kNullLobe;
-        return s;
-    }
+    if (wo.z == 0) return std::nullopt;
+    if (wo.z < 0 && !p_.doubleSided) return passThrough(wo, 1.0f, 1.0f);  // culled back face
+    if (wo.z > 0) return sampleFront(wo, uc, u, mode);
+    std::optional<BSDFSample> s = sampleFront(-wo, uc, u, mode);
+    if (s) s->wi = -s->wi;
+    return s;
+}
+
+std::optional<BSDFSample> PbrBSDF::sampleFront(const vec3& wo, float uc, const vec2& u, TransportMode mode) const {
+    if (uc >= p_.opacity) return passThrough(wo, 1.0f - p_.opacity, 1.0f - p_.opacity);  // alpha coverage
     uc /= p_.opacity;
     int lobe = 0;
     for (float acc = lobeProb_[0]; lobe < kLobes - 1 && uc >= acc; acc += lobeProb_[++lobe]) {}

@@ -10,7 +10,9 @@
 // specular_btdf is thin-walled (no volume): the GGX lobe of the direction mirrored through the
 // surface, centred on −v. α = roughness². The base weight of a film is exact per lane (1 − F) in the
 // Exact reading and the README's max₃ in the Khr reading. Alpha coverage (mask, blend) is a
-// pass-through lobe of weight 1 − opacity.
+// pass-through lobe of weight 1 − opacity. Seen from behind (wo.z < 0), a double-sided material
+// is the same BSDF mirrored through the surface; a single-sided one is culled (§3.9.5): a
+// pass-through of weight 1.
 #pragma once
 
 #include "materials/bsdf.h"
@@ -28,7 +30,7 @@ struct PbrPoint {
     float sheenMax = 0, metallic = 0, alpha = 1, ior = 1.5f, specular = 1, transmission = 0;
     float clearcoat = 0, coatAlpha = 0, sheenAlpha = 0, sheenRoughness = 0;
     float iridescence = 0, thicknessNm = 0, filmIor = 1.3f, edgeTint = -1, opacity = 1;
-    bool rgb = false;
+    bool rgb = false, doubleSided = false;
     ThinFilmRGBMode mode = ThinFilmRGBMode::Exact;
 };
 
@@ -49,6 +51,11 @@ private:
     SampledSpectrum dielectricFresnel(float vh, SampledSpectrum& baseWeight) const;
     SampledSpectrum metalFresnel(float vh) const;
     float surfacePdf(const vec3& wo, const vec3& wi) const;
+    /// eval / pdf / sample for wo above the surface (the public ones mirror or cull the back side).
+    SampledSpectrum evalFront(const vec3& wo, const vec3& wi) const;
+    float pdfFront(const vec3& wo, const vec3& wi) const;
+    std::optional<BSDFSample> sampleFront(const vec3& wo, float uc, const vec2& u, TransportMode mode) const;
+    std::optional<BSDFSample> passThrough(const vec3& wo, float weight, float prob) const;
 
     PbrPoint p_;
     MicrofacetDistribution spec_, coat_;

@@ -127,7 +127,7 @@ ShapeMaterial MaterialCache::build(int index) {
     p.metallic.texture = p.roughness.texture = texture(pbr.metallicRoughnessTexture, false, path + "/pbrMetallicRoughness/metallicRoughnessTexture");
     p.alphaMode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
     p.alphaCutoff = float(m.alphaCutoff);
-    out.doubleSided = m.doubleSided;
+    out.doubleSided = p.doubleSided = m.doubleSided;
     if (m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0)
         doc_.warnings.push_back(strCat(doc_.path, ": ", path, ": normal and occlusion textures are not applied (docs/gltf.md)"));
     const std::string ext = path + "/extensions/";

@@ -139,6 +139,28 @@ TEST(GltfPbr, KhrReadingIsTheReadmesIridescentFresnel) {
     EXPECT_GT(differs, 0.01) << "the two readings must differ (else the mode is not switched)";
 }
 
+TEST(GltfPbr, BackFacesAreMirroredOrCulled) {
+    // §3.9.5: a double-sided material is lit from behind as from the front; a single-sided one is
+    // culled there (light passes through it unchanged, weight 1).
+    auto two = makeBSDF("gltf_pbr", {{"metallic", 0.0f}, {"roughness", 0.4f}, {"double_sided", true}});
+    auto one = makeBSDF("gltf_pbr", {{"metallic", 0.0f}, {"roughness", 0.4f}, {"double_sided", false}});
+    for (const Pair& p : kPairs) {
+        const SampledSpectrum front = two.bsdf->eval(p.wo, p.wi, TransportMode::Radiance);
+        const SampledSpectrum back = two.bsdf->eval(-p.wo, -p.wi, TransportMode::Radiance);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(front[c], back[c]);
+        EXPECT_EQ(two.bsdf->pdf(p.wo, p.wi, TransportMode::Radiance), two.bsdf->pdf(-p.wo, -p.wi, TransportMode::Radiance));
+        EXPECT_EQ(one.bsdf->eval(-p.wo, -p.wi, TransportMode::Radiance)[0], 0.0f);
+        const auto s = one.bsdf->sample(-p.wo, 0.3f, vec2(0.4f, 0.6f), TransportMode::Radiance);
+        ASSERT_TRUE(s.has_value());
+        EXPECT_TRUE(s->isNull());
+        EXPECT_EQ(s->wi, p.wo);
+        EXPECT_FLOAT_EQ(s->weight()[0], 1.0f);
+        const auto m = two.bsdf->sample(-p.wo, 0.3f, vec2(0.4f, 0.6f), TransportMode::Radiance);
+        ASSERT_TRUE(m.has_value());
+        EXPECT_LT(m->wi.z, 0.0f) << "a mirrored reflection stays on the back side";
+    }
+}
+
 TEST(GltfPbr, RejectsBadParameters) {
     EXPECT_THROW(makeBSDF("gltf_pbr", {{"metallic", 1.5f}}), Error);
     EXPECT_THROW(makeBSDF("gltf_pbr", {{"ior", 0.5f}}), Error);
