@@ -17,7 +17,9 @@ namespace {
 /// the data URI or the buffer view.
 const std::vector<unsigned char>& encodedBytes(const Document& doc, int index, const std::string& path) {
     const tinygltf::Image& img = doc.model.images[size_t(index)];
-    if (img.image.empty()) failAtPath(doc, path, "the image has no data (uri '", img.uri, "', bufferView ", img.bufferView, ")");
+    if (img.image.empty() && !img.uri.empty() && img.uri.rfind("data:", 0) != 0)
+        failAtPath(doc, path, "cannot read the image file '", img.uri, "' (relative to '", doc.dir, "')");
+    if (img.image.empty()) failAtPath(doc, path, "the image has no data (bufferView ", img.bufferView, ")");
     return img.image;
 }
 
