@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <typeinfo>
 
 #include "core/error.h"
 #include "core/source_tree.h"
@@ -102,6 +103,18 @@ TEST(GltfLoader, ASceneWithoutLightsGetsTheDefaultEnvironment) {
     // sphere and one directional light).
     const SceneDescription e = loadSceneFile(asset("extensions.gltf"));
     EXPECT_EQ(e.lights.size(), 1u);
+}
+
+TEST(GltfLoader, EnvmapOptionReplacesTheDefaultEnvironment) {
+    // strips_fans.gltf has no light: by default one constant environment; with envmap, the map
+    // instead (an envmap light, whose Le varies over directions where the constant's does not).
+    const SceneDescription plain = loadSceneFile(asset("strips_fans.gltf"));
+    const SceneDescription lit = loadSceneFile(asset("strips_fans.gltf"), {{"envmap", sourcePath("scenes/textures/museum.exr")}});
+    ASSERT_EQ(plain.lights.size(), 1u);
+    ASSERT_EQ(lit.lights.size(), 1u);
+    EXPECT_NE(typeid(*plain.lights[0]).name(), typeid(*lit.lights[0]).name());
+    EXPECT_TRUE(test::contains(test::errorOf([] { loadSceneFile(asset("strips_fans.gltf"), {{"envmap", "no_such_map.exr"}}); }),
+                               "no_such_map.exr"));
 }
 
 TEST(GltfLoader, CameraIsChosenByName) {
