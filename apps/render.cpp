@@ -23,7 +23,7 @@
 #include "core/io/output_file.h"
 #include "core/io/spectral_layout.h"
 #include "core/source_tree.h"
-#include "render/loader/scene_loader.h"
+#include "render/loader/scene_file.h"
 #include "render/render_output.h"
 #include "render/integrator.h"
 #include "render/renderer.h"
@@ -119,7 +119,10 @@ Spectral transport
                            hero (default): N stratified rotations of one sample (Wilkie et al.
                            2014); independent: N independent wavelengths (ablation)
 Scene
-  -D name=value            override a <default> parameter of the scene (repeatable)
+  -D name=value            override a <default> parameter of the scene (repeatable); for a
+                           glTF scene: res, width, height, spp, rgb_mode (docs/gltf.md)
+  --camera NAME            glTF scenes: the camera (or its node) called NAME, not the first one
+  --envmap FILE            glTF scenes: light the scene by this environment map
 Robustness
   --checkpoint FILE        keep the film state in FILE (written at the end, on Ctrl-C, and every
                            --checkpoint-every SEC); --resume continues from it bit-exactly
@@ -221,6 +224,7 @@ int main(int argc, char** argv) {
     bool writePng = true, quiet = false, resume = false, sppRange = false;
     int sppArg = -1, rangeEnd = 0;  // --spp, and the end of --spp-range
     std::map<std::string, std::string> defines;
+    GltfOptions gltfOptions;
     RenderOptions opt;
 
     for (int i = 1; i < argc; ++i) {
@@ -325,6 +329,8 @@ int main(int argc, char** argv) {
             }
         }
         else if (a == "--quiet" || a == "-q") quiet = true;
+        else if (a == "--camera") gltfOptions.camera = value();
+        else if (a == "--envmap") gltfOptions.envmap = value();
         else if (!a.empty() && a[0] == '-') usageError("unknown option '" + a + "'");
         else if (scenePath.empty()) scenePath = a;
         else usageError("more than one scene file given ('" + scenePath + "' and '" + a + "')");
@@ -355,7 +361,7 @@ int main(int argc, char** argv) {
 
         memoryLimit();  // an invalid IRIS_MEMORY_LIMIT stops here, before the scene is read
         raiseAtStartIfAsked();
-        SceneDescription desc = loadScene(scenePath, defines);
+        SceneDescription desc = loadSceneFile(scenePath, defines, gltfOptions);
         opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line
         const Scene scene(std::move(desc));
         opt.onTileFinished = signalHookFromEnvironment();

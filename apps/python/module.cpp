@@ -20,4 +20,5 @@ PYBIND11_MODULE(_iris, m) {
     iris::python::bindFilm(m);
     iris::python::bindMaterials(m);
     iris::python::bindSpectra(m);
+    iris::python::bindThinFilmIndustry(m);
 }

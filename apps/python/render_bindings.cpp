@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "apps/python/bindings.h"
-#include "render/loader/scene_loader.h"
+#include "render/loader/scene_file.h"
 #include "render/integrator.h"
 #include "render/render_output.h"
 #include "render/scene_hash.h"
@@ -43,7 +43,7 @@ PyScene makeScene(const std::string& path, SceneDescription desc, std::string ha
 }
 
 PyScene loadFile(const std::string& path, const std::map<std::string, std::string>& defines) {
-    SceneDescription desc = loadScene(path, defines);
+    SceneDescription desc = loadSceneFile(path, defines);
     return makeScene(path, std::move(desc), sceneHash(path, defines));
 }
 

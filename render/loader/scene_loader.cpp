@@ -7,6 +7,7 @@
 #include "render/films/film_description.h"
 #include "render/integrator.h"
 #include "render/lights/light.h"
+#include "render/loader/gltf_loader.h"
 #include "render/loader/instance_loader.h"
 #include "render/loader/shape_loader.h"
 #include "render/samplers/sampler_description.h"
@@ -73,10 +74,21 @@ void loadEmitter(const Properties& p, SceneDescription& scene) {
     checkMeshAttributes(p, nullptr, strCat("the ", p.type(), " emitter (not on a shape)"));  // e.g. a spot's texture
 }
 
+/// <shape type="gltf" filename="..."> with optional to_world and rgb_mode (render/loader/gltf_loader.h).
+void loadGltfShape(const Properties& p, SceneDescription& scene) {
+    const std::string file = p.getString("filename");
+    const mat4 toWorld = p.getTransform("to_world");
+    const std::string rgbMode = p.getString("rgb_mode", "point");
+    p.checkUnqueried();
+    withLocation(p.locationOf("filename"), [&] { appendGltf(file, toWorld, rgbMode, scene); });
+}
+
 void loadObject(const Properties& p, SceneDescription& scene, bool& haveSensor, bool& haveIntegrator) {
     const std::string& tag = p.tag();
     if (tag == "shape" && p.type() == "shapegroup") {
         loadShapeGroup(p);  // created now so that its errors show even when no instance uses it; not rendered itself
+    } else if (tag == "shape" && p.type() == "gltf") {
+        loadGltfShape(p, scene);  // docs/gltf.md: a glTF file's meshes and lights placed in the scene
     } else if (tag == "shape" && p.type() == "instance") {
         scene.instances.push_back(loadInstance(p));
     } else if (tag == "shape") {

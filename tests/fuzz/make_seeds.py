@@ -224,6 +224,20 @@ def vol_seeds():
     put('vol', 'uint8.vol', vol(3, (3, 1, 1), 1, [0, 128, 255]))
 
 
+def gltf_seeds():
+    """glTF 2.0 (render/loader/gltf_*): the small assets of tests/gltf/make_assets.py, valid and hostile."""
+    import sys
+    import tempfile
+    sys.path.insert(0, os.path.join(ROOT, '..', 'gltf'))
+    import make_assets
+    with tempfile.TemporaryDirectory() as tmp:
+        make_assets.main_into(tmp)
+        for name in sorted(os.listdir(tmp)):
+            data = open(os.path.join(tmp, name), 'rb').read()
+            if len(data) <= 16384 and not name.endswith('.bin'):  # .ci/fuzz-run's -max_len
+                put('gltf', name, data)
+
+
 def scene_seeds():
     for name, text in SCENE_SEEDS.items():
         put('scene', name, text)
@@ -239,3 +253,4 @@ if __name__ == '__main__':
     checkpoint_seeds()
     scene_seeds()
     vol_seeds()
+    gltf_seeds()

@@ -57,6 +57,25 @@ MaterialStress nonConserving(double bound, std::string note, std::vector<StressC
 
 // ---- per-material tables ------------------------------------------------------------------
 
+MaterialStress gltfPbr() {
+    auto g = [](float metallic, float rough) { return P("gltf_pbr").f("metallic", metallic).f("roughness", rough); };
+    return nonConserving(
+        5.0, "KHR_materials_sheen's Charlie lobe with its fitted visibility reflects more than it receives at grazing "
+             "angles of smooth sheens (measured 4.1 at cos 0.0017, sheen roughness 0), its albedo scaling is clamped at 0, "
+             "KHR_materials_iridescence's RGB Fresnel is not bounded by 1, and glTF's fresnel_mix returns up to ~1.09 "
+             "for white dielectric bases (GltfPbrSampling.WhiteFurnace)",
+        {
+            {"metal r=0 white", g(1.0f, 0.0f).f("base_color", 1.0f)},
+            {"dielectric r=1 white", g(0.0f, 1.0f).f("base_color", 1.0f)},
+            {"ior 1 specular 0", g(0.0f, 0.5f).f("ior", 1.0f).f("specular", 0.0f)},
+            {"transmission 1 r=1e-3", g(0.0f, 1e-3f).f("transmission", 1.0f).f("base_color", 1.0f)},
+            {"sheen r=0 coat r=0", g(0.5f, 0.5f).f("sheen_color", 1.0f).f("sheen_roughness", 0.0f).f("clearcoat", 1.0f)},
+            {"film d=0 ior 2.3 metal", g(1.0f, 0.2f).f("iridescence", 1.0f).f("iridescence_thickness", 0.0f).f("iridescence_ior", 2.3f)},
+            {"film d=1500 dielectric", g(0.0f, 0.2f).f("iridescence", 1.0f).f("iridescence_thickness", 1500.0f).f("ior", 3.0f)},
+            {"khr film metal", g(1.0f, 0.3f).f("iridescence", 1.0f).str("rgb_mode", "khr_iridescence").f("base_color", 0.99f)},
+        });
+}
+
 MaterialStress diffuse() {
     return conserving({
         {"white", P("diffuse").f("reflectance", 1.0f)},
@@ -434,6 +453,7 @@ const std::map<std::string, Builder>& table() {
         {"principledthin", principledthin},
         {"proposed", proposed},
         {"cloth", cloth},
+        {"gltf_pbr", gltfPbr},
         {"velvet", velvet},
         {"thinfilm", thinfilm},
         {"iridescent_diffuse", iridescentDiffuse},

@@ -100,3 +100,13 @@ def rgb_to_spectrum(rgb) -> RGBSpectrum:
         raise _iris.Error(f"rgb: expected 3 components, got {a.size}")
     c, err, it = _iris.fit_rgb([float(x) for x in a])
     return RGBSpectrum(tuple(c), float(err), int(it))
+
+
+def delta_e2000(test, reference) -> np.ndarray:
+    """CIEDE2000 between linear Rec.709 colours (..., 3), as the `compare` tool measures images
+    (CIELAB with the RGB white, D65 at Y = 1, as reference white)."""
+    a = real_array("test", test)
+    b = real_array("reference", reference)
+    if a.shape != b.shape or a.shape[-1:] != (3,):
+        raise _iris.Error(f"test and reference must have the same shape (..., 3), got {a.shape} and {b.shape}")
+    return _iris.color_delta_e2000(a.reshape(-1, 3), b.reshape(-1, 3)).reshape(a.shape[:-1])

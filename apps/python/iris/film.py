@@ -126,6 +126,21 @@ def stack_rt(layers, wavelengths_nm, cos_theta, incident_ior=1.0, substrate_ior=
     return StackRT(*(out[c].reshape(shape) for c in range(4)))
 
 
+def _broadcast_with_rgb(scalars: dict, rgb_name: str, rgb: np.ndarray):
+    """Broadcast named arrays with one of R, G, B values (last dimension 3, or one value for all):
+    the flat scalars, the (n, 3) RGB values and the broadcast shape; iris.Error naming them."""
+    if rgb.ndim == 0:
+        rgb = np.full(3, rgb)
+    if rgb.shape[-1] != 3:
+        raise _iris.Error(f"{rgb_name}: expected one value or R, G, B values (last dimension 3), got shape {rgb.shape}")
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in scalars.values()), rgb.shape[:-1])
+    except ValueError:
+        raise _iris.Error(f"{', '.join(scalars)} and {rgb_name} do not broadcast together") from None
+    flat = [np.ascontiguousarray(np.broadcast_to(x, shape)).ravel() for x in scalars.values()]
+    return flat, np.ascontiguousarray(np.broadcast_to(rgb, shape + (3,))).reshape(-1, 3), shape
+
+
 def belcour_barla_rgb(film_ior, thickness_nm, cos_theta, incident_ior=1.0, substrate_ior=1.5) -> np.ndarray:
     """Belcour & Barla 2017's spectrally integrated RGB (linear Rec.709) reflectance of one
     dielectric film on a base (spectral/belcour_barla.h): shape (..., 3) for the broadcast shape
@@ -142,14 +157,36 @@ def belcour_barla_rgb(film_ior, thickness_nm, cos_theta, incident_ior=1.0, subst
         if sub.dtype.kind not in "biufc":
             raise TypeError(f"substrate_ior: expected a number, complex number, array or name, got {type(substrate_ior).__name__}")
         sub = sub.astype(np.complex128)
-    if sub.ndim == 0:
-        sub = np.full(3, sub)
-    if sub.shape[-1] != 3:
-        raise _iris.Error(f"substrate_ior: expected one index or R, G, B indices (last dimension 3), got shape {sub.shape}")
-    try:
-        shape = np.broadcast_shapes(cos.shape, n0.shape, eta.shape, d.shape, sub.shape[:-1])
-    except ValueError:
-        raise _iris.Error("cos_theta, incident_ior, film_ior, thickness_nm and substrate_ior do not broadcast together") from None
-    flat = [np.ascontiguousarray(np.broadcast_to(x, shape)).ravel() for x in (cos, n0, eta, d)]
-    sub_flat = np.ascontiguousarray(np.broadcast_to(sub, shape + (3,))).reshape(-1, 3)
+    flat, sub_flat, shape = _broadcast_with_rgb({"cos_theta": cos, "incident_ior": n0, "film_ior": eta, "thickness_nm": d},
+                                                "substrate_ior", sub)
     return _iris.film_belcour_barla(*flat, sub_flat).reshape(shape + (3,))
+
+
+def khr_iridescence_rgb(film_ior, thickness_nm, cos_theta, base_f0, outside_ior=1.0) -> np.ndarray:
+    """KHR_materials_iridescence's iridescent_fresnel as the extension's README writes it (Schlick
+    interfaces, phase 0 or π, two harmonics of the Gaussian CIE fit, sRGB matrix;
+    spectral/thin_film_industry.h): linear Rec.709, shape (..., 3). `base_f0` is the base's
+    normal-incidence reflectance, one value or R, G, B (last dimension 3), in [0, 1)."""
+    cos = real_array("cos_theta", cos_theta)
+    n0 = real_array("outside_ior", outside_ior)
+    eta = real_array("film_ior", film_ior)
+    d = real_array("thickness_nm", thickness_nm)
+    f0 = real_array("base_f0", base_f0)
+    flat, f0_flat, shape = _broadcast_with_rgb({"cos_theta": cos, "outside_ior": n0, "film_ior": eta, "thickness_nm": d},
+                                               "base_f0", f0)
+    return _iris.thin_film_khr_rgb(*flat, f0_flat).reshape(shape + (3,))
+
+
+def gulbrandsen_ior(reflectivity, edge_tint) -> np.ndarray:
+    """Gulbrandsen 2014 ("Artist Friendly Metallic Fresnel", JCGT 3(4)): the complex index n + ik
+    of a metal whose normal-incidence reflectivity is `reflectivity` and edge tint `edge_tint`
+    (both in [0, 1]; reflectivity is clamped to 0.99, as in spectral/thin_film_industry.h),
+    broadcast together."""
+    r = real_array("reflectivity", reflectivity)
+    g = real_array("edge_tint", edge_tint)
+    try:
+        shape = np.broadcast_shapes(r.shape, g.shape)
+    except ValueError:
+        raise _iris.Error("reflectivity and edge_tint do not broadcast together") from None
+    flat = [np.ascontiguousarray(np.broadcast_to(x, shape)).ravel() for x in (r, g)]
+    return _iris.gulbrandsen_ior(*flat).reshape(shape)

@@ -27,8 +27,10 @@ def _defines(defines: dict) -> dict:
 
 
 def load_file(path, **defines) -> _iris.Scene:
-    """Load a Mitsuba XML scene file; keyword arguments override its <default> values (like
-    `render -D name=value`). Raises iris.Error "file:line: message" on bad input."""
+    """Load a Mitsuba XML scene file or a glTF 2.0 file (.gltf, .glb; docs/gltf.md); keyword
+    arguments override an XML file's <default> values (like `render -D name=value`) or set a glTF
+    file's res, width, height, spp, camera, envmap and rgb_mode. Raises iris.Error
+    "file:line: message" (XML) or "file: /json/path: message" (glTF) on bad input."""
     return _iris.load_file(os.fspath(path), _defines(defines))
 
 

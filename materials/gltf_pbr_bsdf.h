@@ -1,0 +1,65 @@
+// The glTF 2.0 BSDF at one surface point (glTF 2.0 Appendix B; extensions as in gltf_pbr.h):
+//   material = mix(dielectric_brdf, metal_brdf, metallic)                        (B.1)
+//   metal_brdf = F_metal · specular_brdf(α),  F_metal = C + (1 − C)(1 − |v·h|)⁵   (B.2.1, B.3.4)
+//   dielectric_brdf = (1 − s·max₃(fr)) · base + s·fr · specular_brdf(α)          (KHR_materials_specular)
+//     fr = f0 + (1 − f0)(1 − |v·h|)⁵, f0 = min(((ior − 1)/(ior + 1))² · specularColor, 1)  (KHR_materials_ior)
+//     base = mix(C/π, C · specular_btdf(α), transmission)                        (KHR_materials_transmission)
+//   sheen:     sheenColor · D_charlie V_sheen + material · min(1 − max₃(sheenColor) E(n·v), 1 − max₃(sheenColor) E(n·l))
+//   clearcoat: (1 − c·Fc) · (the above) + c·Fc · specular_brdf(α_c),  Fc = 0.04 + 0.96 (1 − |v·h|)⁵
+//   iridescence: F_metal → mix(F_metal, F_film, i), s·fr → mix(s·fr, F_film, i)  (KHR_materials_iridescence)
+// specular_btdf is thin-walled (no volume): the GGX lobe of the direction mirrored through the
+// surface, centred on −v. α = roughness². The base weight of a film is exact per lane (1 − F) in the
+// Exact reading and the README's max₃ in the Khr reading. Alpha coverage (mask, blend) is a
+// pass-through lobe of weight 1 − opacity. Seen from behind (wo.z < 0), a double-sided material
+// is the same BSDF mirrored through the surface; a single-sided one is culled (§3.9.5): a
+// pass-through of weight 1.
+#pragma once
+
+#include "materials/bsdf.h"
+#include "materials/gltf_pbr.h"
+#include "materials/microfacet.h"
+#include "spectral/sampled_spectrum.h"
+
+namespace iris::gltf {
+
+/// The material's inputs at one point: colours per lane (wavelength or channel) and in RGB (the
+/// spec's max₃ weights read the RGB), scalars once.
+struct PbrPoint {
+    SampledSpectrum base, specularColor, sheenColor, lambda;  // lambda: each lane's wavelength (nm)
+    vec3 baseRGB{1.0f}, specularColorRGB{1.0f};
+    float sheenMax = 0, metallic = 0, alpha = 1, ior = 1.5f, specular = 1, transmission = 0;
+    float clearcoat = 0, coatAlpha = 0, sheenAlpha = 0, sheenRoughness = 0;
+    float iridescence = 0, thicknessNm = 0, filmIor = 1.3f, edgeTint = -1, opacity = 1;
+    bool rgb = false, doubleSided = false;
+    ThinFilmRGBMode mode = ThinFilmRGBMode::Exact;
+};
+
+class PbrBSDF final : public BSDF {
+public:
+    explicit PbrBSDF(const PbrPoint& p);
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override;
+    float pdf(const vec3& wo, const vec3& wi, TransportMode mode) const override;
+    std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override;
+    uint32_t flags() const override;
+
+private:
+    enum Lobe { kDiffuse, kSpecular, kTransmission, kSheen, kCoat, kLobes };
+    /// The surface (everything but the pass-through) at v = wo, l = wi.
+    SampledSpectrum surface(const vec3& wo, const vec3& wi) const;
+    /// The dielectric and metal Fresnel-weighted parts at |v·h| = vh: returns the specular
+    /// colour per lane and sets baseWeight, the weight of the base (diffuse / transmission).
+    SampledSpectrum dielectricFresnel(float vh, SampledSpectrum& baseWeight) const;
+    SampledSpectrum metalFresnel(float vh) const;
+    float surfacePdf(const vec3& wo, const vec3& wi) const;
+    /// eval / pdf / sample for wo above the surface (the public ones mirror or cull the back side).
+    SampledSpectrum evalFront(const vec3& wo, const vec3& wi) const;
+    float pdfFront(const vec3& wo, const vec3& wi) const;
+    std::optional<BSDFSample> sampleFront(const vec3& wo, float uc, const vec2& u, TransportMode mode) const;
+    std::optional<BSDFSample> passThrough(const vec3& wo, float weight, float prob) const;
+
+    PbrPoint p_;
+    MicrofacetDistribution spec_, coat_;
+    float lobeProb_[kLobes] = {};
+};
+
+}  // namespace iris::gltf
