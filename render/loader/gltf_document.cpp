@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "core/io/whole_file.h"
+#include "core/input_file.h"
 
 namespace iris::gltf {
 
@@ -77,7 +77,7 @@ const std::vector<std::string>& supportedExtensions() {
     return names;
 }
 
-std::string readGltfBytes(const std::string& path) { return readWholeFile(path, "glTF file"); }
+std::string readGltfBytes(const std::string& path) { return readInputFile(path, "glTF file"); }
 
 Document readDocument(const std::string& path) {
     return readDocumentFromBytes(readGltfBytes(path), path, std::filesystem::path(path).parent_path().string());

@@ -1,8 +1,8 @@
 // Reading a glTF 2.0 file (.gltf with its buffers and images, or .glb) with tinygltf (Debian's
 // libtinygltf-dev), and the checks every other glTF reader here relies on: the extensions the file
 // requires or uses, and messages that name the file and the JSON path of the problem.
-// All of the glTF importer's file reads go through readGltfBytes (one place, core's readWholeFile
-// with the memory budget's size check).
+// All of the glTF importer's file reads go through readGltfBytes (one place: core/input_file's
+// readInputFile, which refuses devices, FIFOs and directories and checks the memory budget).
 #pragma once
 
 #include <string>
@@ -40,7 +40,7 @@ Document readDocument(const std::string& path);
 /// against `dir` (the fuzz target's entry point).
 Document readDocumentFromBytes(const std::string& bytes, const std::string& name, const std::string& dir);
 
-/// The bytes of a file a glTF refers to (or the glTF itself): core's readWholeFile.
+/// The bytes of a file a glTF refers to (or the glTF itself): core's readInputFile.
 std::string readGltfBytes(const std::string& path);
 
 }  // namespace iris::gltf
