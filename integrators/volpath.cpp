@@ -253,14 +253,14 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
     const vec3 wo = -ray.d;
     if (ps.medium->sampleEmitters() && !scene.lights().empty() && ps.depth + 1 < maxDepth_) {
         ps.L += sampleLight(scene, p, nullptr, h, ps, wl, sampler, rng, arena, stats, [&](const vec3& wi, float& pdf) {
-            pdf = phase.pdf(wo, wi);
-            return SampledSpectrum(wl.size(), phase.eval(wo, wi));
+            pdf = phase.pdf(p, wo, wi);
+            return SampledSpectrum(wl.size(), phase.eval(p, wo, wi));
         });
     } else if (!scene.lights().empty()) {
         sampler.get1D();  // keep the sampler's dimensions aligned
         sampler.get2D();
     }
-    const std::optional<PhaseSample> s = phase.sample(wo, sampler.get2D());
+    const std::optional<PhaseSample> s = phase.sample(p, wo, sampler.get2D());
     if (!s || !(s->pdf > 0)) return ps.terminated = true, false;
     ps.beta *= s->weight();
     ps.rL = ps.rU / s->pdf;
