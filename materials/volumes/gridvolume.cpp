@@ -20,7 +20,10 @@
 //    Mitsuba 3 instead interpolates the voxels' sigmoid coefficients and 2·max scales
 //    (grid.cpp, interpolate_spectral); the two agree at voxel centres up to the fits' accuracy.
 //    raw = true makes Mitsuba 3's spectral variants refuse a 3-channel grid; iris upsamples it
-//    anyway (raw has no effect in RGB mode in both). Other channel counts are refused at load.
+//    anyway (raw has no effect in RGB mode in both).
+//  - 6-channel grids hold the parameters of the sggx phase function (Mitsuba 3 src/phase/sggx.cpp,
+//    Volume::eval_6); they are read raw through evalChannels, and a medium's spectrum parameters
+//    refuse them (getVolume). Other channel counts are refused at load.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -33,6 +36,7 @@ namespace iris {
 namespace {
 
 enum class Filter { Trilinear, Nearest };
+constexpr int kMaxChannels = 6;  // 1 (scalar), 3 (RGB) or 6 (sggx's S)
 enum class Wrap { Clamp, Repeat, Mirror };
 
 Filter parseFilter(const Properties& p) {
@@ -72,10 +76,8 @@ public:
     }
 
     SampledSpectrum eval(const vec3& p, const SampledWavelengths& wl) const override {
-        const vec3 u = localPoint(p);
-        float c[3] = {0.0f, 0.0f, 0.0f};
-        if (filter_ == Filter::Nearest) nearest(u, c);
-        else trilinear(u, c);
+        float c[kMaxChannels] = {};
+        evalChannels(p, c);
         if (g_.channels == 1) return SampledSpectrum(wl.size(), c[0]);
         if (wl.isRGB()) {
             SampledSpectrum s(3);
@@ -101,6 +103,14 @@ public:
 
     ValueRange range() const override { return range_; }
     ivec3 resolution() const override { return ivec3(g_.xres, g_.yres, g_.zres); }
+    int channels() const override { return g_.channels; }
+    const VolumeGridData* grid() const override { return &g_; }
+    void evalChannels(const vec3& p, float* c) const override {
+        const vec3 u = localPoint(p);
+        std::fill(c, c + g_.channels, 0.0f);
+        if (filter_ == Filter::Nearest) nearest(u, c);
+        else trilinear(u, c);
+    }
 
 private:
     /// A bound over every lane of the values eval makes from colours whose channels are at most m:
@@ -182,8 +192,8 @@ std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     const bool useGridBox = p.getBool("use_grid_bbox", false);
     if (kind == SpectrumKind::Illuminant) failAt(p.location(), "gridvolume: volumes cannot give emission spectra");
     VolumeGridData g = withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
-    if (g.channels != 1 && g.channels != 3)
-        failAt(p.locationOf("filename"), file, ": gridvolume supports 1- or 3-channel grids, this one has ", g.channels);
+    if (g.channels != 1 && g.channels != 3 && g.channels != kMaxChannels)
+        failAt(p.locationOf("filename"), file, ": gridvolume supports grids of 1, 3 or 6 channels, this one has ", g.channels);
     const mat4 m = gridToWorld(p, toWorld, useGridBox, g);
     return std::make_shared<GridVolume>(std::move(g), m, filter, wrap, kind);
 }
