@@ -1,5 +1,7 @@
 // The `gridvolume` volume (Mitsuba 3 src/volumes/grid.cpp): a voxel grid read from a .vol file
-// (core/io/vol_reader.h). Parameters: filename; filter_type (trilinear | nearest, default
+// (core/io/vol_reader.h) or, an iris extension, one grid of an OpenVDB .vdb file densified
+// (core/io/vdb_reader.h: `filename` ending in .vdb and `grid`, the grid's name, optional when the
+// file holds one grid). Parameters: filename; grid (.vdb only); filter_type (trilinear | nearest, default
 // trilinear); wrap_mode (clamp | repeat | mirror, default clamp); to_world; raw (bool, default
 // false); use_grid_bbox (bool, default false); accel (accepted, no effect: CUDA texture hardware).
 //
@@ -28,6 +30,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/io/vdb_reader.h"
 #include "core/io/vol_reader.h"
 #include "materials/volumes/volume.h"
 #include "spectral/rgb_spectrum_grid.h"
@@ -182,6 +185,16 @@ mat4 gridToWorld(const Properties& p, const mat4& toWorld, bool useGridBox, cons
     return toWorld * glm::scale(glm::translate(mat4(1.0f), g.bboxMin), extent);
 }
 
+/// The file's grid: a .vol file, or the grid `grid` of a .vdb file; errors at the filename's line.
+VolumeGridData readGridFile(const Properties& p, const std::string& file) {
+    if (!isVdbFileName(file)) {
+        if (p.present("grid")) failAt(p.locationOf("grid"), "gridvolume: 'grid' names a grid of a .vdb file; ", file, " is a .vol file");
+        return withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
+    }
+    const std::string grid = p.getString("grid", "");
+    return withLocation(p.locationOf("filename"), [&] { return readVdbFile(file, grid); });
+}
+
 std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     const std::string file = p.getString("filename");
     const Filter filter = parseFilter(p);
@@ -191,7 +204,7 @@ std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     p.getBool("accel", true);  // Mitsuba 3: CUDA hardware interpolation; no effect on the CPU
     const bool useGridBox = p.getBool("use_grid_bbox", false);
     if (kind == SpectrumKind::Illuminant) failAt(p.location(), "gridvolume: volumes cannot give emission spectra");
-    VolumeGridData g = withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
+    VolumeGridData g = readGridFile(p, file);
     if (g.channels != 1 && g.channels != 3 && g.channels != kMaxChannels)
         failAt(p.locationOf("filename"), file, ": gridvolume supports grids of 1, 3 or 6 channels, this one has ", g.channels);
     const mat4 m = gridToWorld(p, toWorld, useGridBox, g);
