@@ -53,9 +53,9 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
-/// "sphere", "cylinder" or "sdfgrid", for messages about shapes that are not meshes.
+/// "a sphere", "a cylinder" or "an sdfgrid", for messages about shapes that are not meshes.
 const char* analyticTypeName(ShapeDescription::Type t) {
-    return t == ShapeDescription::Type::Sphere ? "sphere" : t == ShapeDescription::Type::Cylinder ? "cylinder" : "sdfgrid";
+    return t == ShapeDescription::Type::Sphere ? "a sphere" : t == ShapeDescription::Type::Cylinder ? "a cylinder" : "an sdfgrid";
 }
 
 /// The mesh_attribute textures of the shape's bsdf or emitter must name attributes of its mesh
@@ -65,7 +65,7 @@ void checkAttributes(const Properties& tree, const ShapeDescription& s) {
     if (s.type == ShapeDescription::Type::Mesh)
         checkMeshAttributes(tree, s.mesh.get(), strCat("shape '", s.name, "'"));
     else
-        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (a ", analyticTypeName(s.type), ")"));
+        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (", analyticTypeName(s.type), ")"));
 }
 
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
