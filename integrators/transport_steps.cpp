@@ -52,8 +52,8 @@ std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const v
                                                      float uLight, const vec2& uL, const SampledWavelengths& wl) {
     std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl);
     if (!s) return std::nullopt;
-    s->scatterPdf = phase.pdf(wo, s->ls.wi);
-    s->f = SampledSpectrum(wl.size(), phase.eval(wo, s->ls.wi));
+    s->scatterPdf = phase.pdf(p, wo, s->ls.wi);
+    s->f = SampledSpectrum(wl.size(), phase.eval(p, wo, s->ls.wi));
     if (s->f.isBlack()) return std::nullopt;
     return s;
 }

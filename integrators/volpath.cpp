@@ -278,7 +278,7 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
             if (const auto s = sampleLightInMedium(scene, p, phase, wo, uLight, uL, wl))
                 ps.L += lightContribution(scene, p, nullptr, *s, h, ps, wl, rng, arena, stats);
     }
-    const std::optional<PhaseSample> s = phase.sample(wo, sampler.get2D());
+    const std::optional<PhaseSample> s = phase.sample(p, wo, sampler.get2D());
     if (!s || !(s->pdf > 0)) return ps.terminated = true, false;
     ps.beta *= s->weight();
     ps.rL = ps.rU / s->pdf;

@@ -10,6 +10,7 @@
 #include "core/registry.h"
 #include "materials/material.h"
 #include "core/cylinder_intersection.h"
+#include "core/sdf_grid_intersection.h"
 #include "core/sphere_intersection.h"
 #include "render/instance_transform.h"
 #include "render/scene_memory.h"
@@ -29,29 +30,32 @@ void embreeError(void*, RTCError code, const char* str) {
     (void)str;
 }
 
-// The analytic shapes (spheres, cylinders) are Embree user geometry, one primitive each,
-// intersected in double precision (core/sphere_intersection.h, core/cylinder_intersection.h).
+// The analytic shapes (spheres, cylinders) are Embree user geometry, one primitive each, and an SDF
+// grid one primitive per surface voxel, intersected in double precision (core/sphere_intersection.h,
+// core/cylinder_intersection.h, core/sdf_grid_intersection.h).
 // The scene only calls rtcIntersect1 and rtcOccluded1, so Embree calls these with one ray (N = 1).
 // Scene::intersect computes the surface interaction from the hit point; Ng is only a placeholder.
 struct SphereShape {
-    static double hit(const ShapeDescription& s, const RTCRay& r) {
+    static unsigned count(const ShapeDescription&) { return 1; }
+    static double hit(const ShapeDescription& s, unsigned, const RTCRay& r) {
         return intersectSphere(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), dvec3(s.center),
                                double(s.radius), double(r.tnear), double(r.tfar));
     }
-    static void bounds(const ShapeDescription& s, vec3& lo, vec3& hi) {
+    static void bounds(const ShapeDescription& s, unsigned, vec3& lo, vec3& hi) {
         lo = s.center - vec3(s.radius);
         hi = s.center + vec3(s.radius);
     }
 };
 
 struct CylinderShape {
-    static double hit(const ShapeDescription& s, const RTCRay& r) {
+    static unsigned count(const ShapeDescription&) { return 1; }
+    static double hit(const ShapeDescription& s, unsigned, const RTCRay& r) {
         return intersectCylinder(dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z), s.cylinder,
                                  double(s.radius), double(r.tnear), double(r.tfar));
     }
     /// The two end circles' bounding boxes: a circle of radius r around the unit axis a extends
     /// r·sqrt(1 − a_i²) along world axis i.
-    static void bounds(const ShapeDescription& s, vec3& lo, vec3& hi) {
+    static void bounds(const ShapeDescription& s, unsigned, vec3& lo, vec3& hi) {
         const CylinderGeometry& c = s.cylinder;
         const vec3 p1 = c.p0 + c.length * c.axis;
         const vec3 e = s.radius * glm::sqrt(glm::max(vec3(0.0f), vec3(1.0f) - c.axis * c.axis));
@@ -60,11 +64,20 @@ struct CylinderShape {
     }
 };
 
+struct SdfGridShape {
+    static unsigned count(const ShapeDescription& s) { return unsigned(s.sdf->voxels.size()); }
+    static double hit(const ShapeDescription& s, unsigned prim, const RTCRay& r) {
+        return intersectSdfVoxel(*s.sdf, prim, dvec3(r.org_x, r.org_y, r.org_z), dvec3(r.dir_x, r.dir_y, r.dir_z),
+                                 double(r.tnear), double(r.tfar));
+    }
+    static void bounds(const ShapeDescription& s, unsigned prim, vec3& lo, vec3& hi) { s.sdf->voxelBounds(prim, lo, hi); }
+};
+
 template <class G>
 void userBounds(const RTCBoundsFunctionArguments* args) {
     const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
     vec3 lo, hi;
-    G::bounds(s, lo, hi);
+    G::bounds(s, args->primID, lo, hi);
     // Padded by a few float ulps of the extent so that rounding the bounds to float never clips.
     const vec3 m = glm::max(glm::abs(lo), glm::abs(hi));
     const float pad = 1e-6f * (glm::length(hi - lo) + std::max({m.x, m.y, m.z}));
@@ -82,7 +95,7 @@ void userIntersect(const RTCIntersectFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
     RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(args->rayhit);
-    const double t = G::hit(s, rh.ray);
+    const double t = G::hit(s, args->primID, rh.ray);
     if (!std::isfinite(t)) return;
     rh.ray.tfar = float(t);  // ≤ the old tfar: rounding is monotone and the old tfar is a float
     rh.hit.Ng_x = rh.hit.Ng_y = 0.0f;
@@ -98,7 +111,7 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;
     const auto& s = *static_cast<const ShapeDescription*>(args->geometryUserPtr);
     RTCRay& r = *reinterpret_cast<RTCRay*>(args->ray);
-    if (std::isfinite(G::hit(s, r))) r.tfar = -std::numeric_limits<float>::infinity();
+    if (std::isfinite(G::hit(s, args->primID, r))) r.tfar = -std::numeric_limits<float>::infinity();
 }
 
 void growBounds(vec3& lo, vec3& hi, const vec3& p) {
@@ -109,15 +122,17 @@ void growBounds(vec3& lo, vec3& hi, const vec3& p) {
 template <class G>
 RTCGeometry userGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo, vec3& hi) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserPrimitiveCount(geom, G::count(s));
     rtcSetGeometryUserData(geom, const_cast<ShapeDescription*>(&s));
     rtcSetGeometryBoundsFunction(geom, userBounds<G>, nullptr);
     rtcSetGeometryIntersectFunction(geom, userIntersect<G>);
     rtcSetGeometryOccludedFunction(geom, userOccluded<G>);
-    vec3 l, h;
-    G::bounds(s, l, h);
-    growBounds(lo, hi, l);
-    growBounds(lo, hi, h);
+    for (unsigned prim = 0; prim < G::count(s); ++prim) {
+        vec3 l, h;
+        G::bounds(s, prim, l, h);
+        growBounds(lo, hi, l);
+        growBounds(lo, hi, h);
+    }
     return geom;
 }
 
@@ -148,6 +163,10 @@ RTCGeometry shapeGeometry(RTCDevice device, const ShapeDescription& s, vec3& lo,
         if (!(s.radius > 0) || !isFinite(s.center)) fail("sphere '", s.name, "' has an invalid radius or center");
         return userGeometry<SphereShape>(device, s, lo, hi);
     }
+    if (s.type == ShapeDescription::Type::SdfGrid) {
+        if (!s.sdf || s.sdf->voxels.empty()) fail("sdfgrid '", s.name, "' has no surface voxels");
+        return userGeometry<SdfGridShape>(device, s, lo, hi);
+    }
     const CylinderGeometry& c = s.cylinder;
     if (!(s.radius > 0) || !(c.length > 0) || !isFinite(c.p0) || !isFinite(c.axis))
         fail("cylinder '", s.name, "' has an invalid radius, length or position");
@@ -160,6 +179,7 @@ LightPtr areaLightOf(const ShapeDescription& s) {
         s.emissionTexture ? s.emissionTexture : std::make_shared<ConstantSpectrumTexture>(s.emission);
     if (s.type == ShapeDescription::Type::Mesh) return std::make_shared<AreaLight>(s.mesh.get(), radiance);
     if (s.type == ShapeDescription::Type::Sphere) return std::make_shared<AreaLight>(s.center, s.radius, s.frame, s.flipNormals, radiance);
+    if (s.type == ShapeDescription::Type::SdfGrid) fail("sdfgrid '", s.name, "' cannot be an area emitter (as in Mitsuba 3)");
     return std::make_shared<AreaLight>(s.cylinder, s.radius, s.flipNormals, radiance);
 }
 
@@ -303,6 +323,20 @@ void cylinderInteraction(const ShapeDescription& s, SurfaceInteraction& si) {
     si.ng = si.ns = n;
 }
 
+/// The SDF grid's interaction at the hit point si.p in surface voxel `prim` (Mitsuba 3,
+/// src/shapes/sdfgrid.cpp): the point moved onto the zero set (one Newton step, sdf_grid.h), the
+/// geometric normal from the interpolant's gradient, the shading normal as the shape's `normals`
+/// option says; no uv (0, 0), and tangents of a frame around the shading normal.
+void sdfInteraction(const ShapeDescription& s, unsigned prim, SurfaceInteraction& si) {
+    const SdfGrid& g = *s.sdf;
+    si.p = g.projectOntoSurface(prim, si.p);
+    si.ng = g.analyticNormal(prim, si.p);
+    si.ns = g.shadingNormal(prim, si.p);
+    const Frame f = Frame::fromNormal(si.ns);
+    si.dpdu = f.s;
+    si.dpdv = f.t;
+}
+
 /// A triangle's interaction at barycentrics (b1, b2) of triangle `prim`.
 void meshInteraction(const ShapeDescription& s, unsigned prim, float b1, float b2, SurfaceInteraction& si) {
     const TriangleMesh& m = *s.mesh;
@@ -423,6 +457,8 @@ void Scene::hitInteraction(size_t index, unsigned prim, float b1, float b2, cons
         meshInteraction(s, prim, b1, b2, si);
     else if (s.type == ShapeDescription::Type::Cylinder)
         cylinderInteraction(s, si);
+    else if (s.type == ShapeDescription::Type::SdfGrid)
+        sdfInteraction(s, prim, si);
     else
         sphereInteraction(s, si);
 }

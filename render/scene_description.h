@@ -18,6 +18,7 @@
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
 #include "core/cylinder_intersection.h"
+#include "core/sdf_grid.h"
 #include "render/sensors/sensor.h"
 #include "spectral/spectrum.h"
 
@@ -26,7 +27,7 @@ namespace iris {
 class Light;
 
 struct ShapeDescription {
-    enum class Type { Mesh, Sphere, Cylinder } type = Type::Mesh;
+    enum class Type { Mesh, Sphere, Cylinder, SdfGrid } type = Type::Mesh;
     // World space for a top-level shape, the group's space for a shape of a ShapeGroupDescription.
     std::shared_ptr<TriangleMesh> mesh;  // Mesh: already transformed by the shape's to_world
     vec3 center{0.0f};                   // Sphere
@@ -34,6 +35,7 @@ struct ShapeDescription {
     bool rotated = false;                // Sphere: frame is not the identity
     float radius = 1.0f;                 // Sphere, Cylinder
     CylinderGeometry cylinder;           // Cylinder (world space)
+    std::shared_ptr<const SdfGrid> sdf;  // SdfGrid (placed in the shape's space by its toWorld)
     bool flipNormals = false;            // Sphere, Cylinder: normals point inwards
     bool faceNormals = false;            // Mesh: ignore vertex normals
     MaterialPtr material;                // nullptr: the default diffuse (0.5) material

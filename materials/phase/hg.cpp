@@ -15,9 +15,9 @@ class HenyeyGreenstein final : public PhaseFunction {
 public:
     explicit HenyeyGreenstein(float g) : g_(g) {}
 
-    float eval(const vec3& wo, const vec3& wi) const override { return value(-glm::dot(wo, wi)); }
-    float pdf(const vec3& wo, const vec3& wi) const override { return value(-glm::dot(wo, wi)); }
-    std::optional<PhaseSample> sample(const vec3& wo, const vec2& u) const override {
+    float eval(const vec3&, const vec3& wo, const vec3& wi) const override { return value(-glm::dot(wo, wi)); }
+    float pdf(const vec3&, const vec3& wo, const vec3& wi) const override { return value(-glm::dot(wo, wi)); }
+    std::optional<PhaseSample> sample(const vec3&, const vec3& wo, const vec2& u) const override {
         const vec3 wi = directionWithScatteringCosine(wo, sampleCosine(u.x), u.y);
         const float p = value(-glm::dot(wo, wi));
         return PhaseSample{wi, p, p};

@@ -7,9 +7,9 @@ namespace {
 
 class IsotropicPhase final : public PhaseFunction {
 public:
-    float eval(const vec3&, const vec3&) const override { return kInv4Pi; }
-    float pdf(const vec3&, const vec3&) const override { return kInv4Pi; }
-    std::optional<PhaseSample> sample(const vec3&, const vec2& u) const override {
+    float eval(const vec3&, const vec3&, const vec3&) const override { return kInv4Pi; }
+    float pdf(const vec3&, const vec3&, const vec3&) const override { return kInv4Pi; }
+    std::optional<PhaseSample> sample(const vec3&, const vec3&, const vec2& u) const override {
         return PhaseSample{sampleUniformSphere(u), kInv4Pi, kInv4Pi};
     }
 };

@@ -3,9 +3,14 @@
 // BSDFs: wo towards the previous path vertex (−ray direction), wi towards the next one (or the
 // light). The scattering angle θ is the angle between the incident propagation direction −wi and
 // the outgoing one wo, cos θ = −wo·wi; forward scattering (the ray goes on undeflected) is wi = −wo.
-// p(wo, wi) is a density per unit solid angle over the sphere of wi (∫ p dωi = 1); it is symmetric,
-// p(wo, wi) = p(wi, wo). Every phase function here is sampled exactly (sample().weight = 1 up to
+// p(wo, wi) is a density per unit solid angle over the sphere of wi (∫ p dωi = 1). The rotationally
+// symmetric ones (a function of cos θ alone) are symmetric, p(wo, wi) = p(wi, wo); a microflake
+// phase function (`sggx`) is reciprocal only with its projected area, σ(wo) p(wo, wi) =
+// σ(wi) p(wi, wo). Every phase function here is sampled exactly (sample().weight = 1 up to
 // rounding); the interface still carries the weight p/pdf so that one that is not can be added.
+// Every method takes the world-space scattering point x: phase functions whose parameters are
+// volumes (`sggx`'s S, `blendphase`'s weight; Mitsuba 3 passes the MediumInteraction) look them up
+// there; the others ignore it.
 // Each type registers a factory in PhaseFunctionRegistry under its scene-file name.
 #pragma once
 
@@ -27,12 +32,12 @@ struct PhaseSample {
 class PhaseFunction {
 public:
     virtual ~PhaseFunction() = default;
-    /// p(wo, wi), 1/sr.
-    virtual float eval(const vec3& wo, const vec3& wi) const = 0;
-    /// wi ~ pdf from the 2D sample u in [0, 1)².
-    virtual std::optional<PhaseSample> sample(const vec3& wo, const vec2& u) const = 0;
-    /// Solid-angle density of sample().
-    virtual float pdf(const vec3& wo, const vec3& wi) const = 0;
+    /// p(wo, wi) at the world point x, 1/sr.
+    virtual float eval(const vec3& x, const vec3& wo, const vec3& wi) const = 0;
+    /// wi ~ pdf from the 2D sample u in [0, 1)², at the world point x.
+    virtual std::optional<PhaseSample> sample(const vec3& x, const vec3& wo, const vec2& u) const = 0;
+    /// Solid-angle density of sample() at the world point x.
+    virtual float pdf(const vec3& x, const vec3& wo, const vec3& wi) const = 0;
 };
 
 using PhaseFunctionPtr = std::shared_ptr<const PhaseFunction>;

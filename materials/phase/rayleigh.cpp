@@ -15,9 +15,9 @@ float rayleigh(float cosTheta) { return 3.0f / (16.0f * kPi) * (1.0f + cosTheta 
 
 class RayleighPhase final : public PhaseFunction {
 public:
-    float eval(const vec3& wo, const vec3& wi) const override { return rayleigh(-glm::dot(wo, wi)); }
-    float pdf(const vec3& wo, const vec3& wi) const override { return rayleigh(-glm::dot(wo, wi)); }
-    std::optional<PhaseSample> sample(const vec3& wo, const vec2& u) const override {
+    float eval(const vec3&, const vec3& wo, const vec3& wi) const override { return rayleigh(-glm::dot(wo, wi)); }
+    float pdf(const vec3&, const vec3& wo, const vec3& wi) const override { return rayleigh(-glm::dot(wo, wi)); }
+    std::optional<PhaseSample> sample(const vec3&, const vec3& wo, const vec2& u) const override {
         const float z = 4.0f * u.x - 2.0f;
         const float a = std::cbrt(z + std::sqrt(z * z + 1.0f));
         const vec3 wi = directionWithScatteringCosine(wo, a - 1.0f / a, u.y);

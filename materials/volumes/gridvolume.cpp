@@ -1,5 +1,7 @@
 // The `gridvolume` volume (Mitsuba 3 src/volumes/grid.cpp): a voxel grid read from a .vol file
-// (core/io/vol_reader.h). Parameters: filename; filter_type (trilinear | nearest, default
+// (core/io/vol_reader.h) or, an iris extension, one grid of an OpenVDB .vdb file densified
+// (core/io/vdb_reader.h: `filename` ending in .vdb and `grid`, the grid's name, optional when the
+// file holds one grid). Parameters: filename; grid (.vdb only); filter_type (trilinear | nearest, default
 // trilinear); wrap_mode (clamp | repeat | mirror, default clamp); to_world; raw (bool, default
 // false); use_grid_bbox (bool, default false); accel (accepted, no effect: CUDA texture hardware).
 //
@@ -25,11 +27,15 @@
 //    from RGBSpectrumGrid (spectral/rgb_spectrum_grid.h); the spectrum may exceed the colour's
 //    maximum (an albedo above 1 at some wavelengths), as in Mitsuba 3.
 //    raw = true makes Mitsuba 3's spectral variants refuse a 3-channel grid; iris upsamples it
-//    anyway (raw has no effect in RGB mode in both). Other channel counts are refused at load.
+//    anyway (raw has no effect in RGB mode in both).
+//  - 6-channel grids hold the parameters of the sggx phase function (Mitsuba 3 src/phase/sggx.cpp,
+//    Volume::eval_6); they are read raw through evalChannels, and a medium's spectrum parameters
+//    refuse them (getVolume). Other channel counts are refused at load.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "core/io/vdb_reader.h"
 #include "core/io/vol_reader.h"
 #include "materials/volumes/volume.h"
 #include "spectral/rgb_spectrum_grid.h"
@@ -38,6 +44,7 @@ namespace iris {
 namespace {
 
 enum class Filter { Trilinear, Nearest };
+constexpr int kMaxChannels = 6;  // 1 (scalar), 3 (RGB) or 6 (sggx's S)
 enum class Wrap { Clamp, Repeat, Mirror };
 
 Filter parseFilter(const Properties& p) {
@@ -78,10 +85,7 @@ public:
     }
 
     SampledSpectrum eval(const vec3& p, const SampledWavelengths& wl) const override {
-        const vec3 u = localPoint(p);
-        Corners k;
-        if (filter_ == Filter::Nearest) nearest(u, k);
-        else trilinear(u, k);
+        const Corners k = corners(localPoint(p));
         if (g_.channels == 3 && !wl.isRGB()) return spectrum(k, wl);
         SampledSpectrum s(wl.size());
         for (int i = 0; i < k.count; ++i) {
@@ -108,6 +112,14 @@ public:
 
     ValueRange range() const override { return range_; }
     ivec3 resolution() const override { return ivec3(g_.xres, g_.yres, g_.zres); }
+    int channels() const override { return g_.channels; }
+    const VolumeGridData* grid() const override { return &g_; }
+    void evalChannels(const vec3& p, float* c) const override {
+        const Corners k = corners(localPoint(p));
+        std::fill(c, c + g_.channels, 0.0f);
+        for (int i = 0; i < k.count; ++i)
+            for (int ch = 0; ch < g_.channels; ++ch) c[ch] += k.weight[i] * g_.values[k.voxel[i] * size_t(g_.channels) + size_t(ch)];
+    }
 
 private:
     /// The voxels a lookup blends (linear indices) and their weights.
@@ -163,6 +175,14 @@ private:
         return out;
     }
 
+    /// The voxels a lookup at local point u blends, with the filter's weights.
+    Corners corners(const vec3& u) const {
+        Corners k;
+        if (filter_ == Filter::Nearest) nearest(u, k);
+        else trilinear(u, k);
+        return k;
+    }
+
     void nearest(const vec3& u, Corners& k) const {
         // FilterMode::Nearest: voxel floor(u·res) (Dr.Jit Texture::eval_nonaccel).
         const int x = int(wrapIndex(floorIndex(u.x * float(g_.xres)), g_.xres, wrap_));
@@ -211,6 +231,16 @@ mat4 gridToWorld(const Properties& p, const mat4& toWorld, bool useGridBox, cons
     return toWorld * glm::scale(glm::translate(mat4(1.0f), g.bboxMin), extent);
 }
 
+/// The file's grid: a .vol file, or the grid `grid` of a .vdb file; errors at the filename's line.
+VolumeGridData readGridFile(const Properties& p, const std::string& file) {
+    if (!isVdbFileName(file)) {
+        if (p.present("grid")) failAt(p.locationOf("grid"), "gridvolume: 'grid' names a grid of a .vdb file; ", file, " is a .vol file");
+        return withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
+    }
+    const std::string grid = p.getString("grid", "");
+    return withLocation(p.locationOf("filename"), [&] { return readVdbFile(file, grid); });
+}
+
 std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     const std::string file = p.getString("filename");
     const Filter filter = parseFilter(p);
@@ -220,9 +250,9 @@ std::shared_ptr<Volume> create(const Properties& p, SpectrumKind kind) {
     p.getBool("accel", true);  // Mitsuba 3: CUDA hardware interpolation; no effect on the CPU
     const bool useGridBox = p.getBool("use_grid_bbox", false);
     if (kind == SpectrumKind::Illuminant) failAt(p.location(), "gridvolume: volumes cannot give emission spectra");
-    VolumeGridData g = withLocation(p.locationOf("filename"), [&] { return readVolFile(file); });
-    if (g.channels != 1 && g.channels != 3)
-        failAt(p.locationOf("filename"), file, ": gridvolume supports 1- or 3-channel grids, this one has ", g.channels);
+    VolumeGridData g = readGridFile(p, file);
+    if (g.channels != 1 && g.channels != 3 && g.channels != kMaxChannels)
+        failAt(p.locationOf("filename"), file, ": gridvolume supports grids of 1, 3 or 6 channels, this one has ", g.channels);
     const mat4 m = gridToWorld(p, toWorld, useGridBox, g);
     return std::make_shared<GridVolume>(std::move(g), m, filter, wrap);
 }

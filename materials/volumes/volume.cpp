@@ -60,9 +60,42 @@ VolumePtr getVolume(const Properties& p, const std::string& name, SpectrumKind k
     if (const PropertiesPtr* obj = std::get_if<PropertiesPtr>(&e.value); obj && (*obj)->tag() != "spectrum") {
         if ((*obj)->tag() != "volume")
             failAt(e.loc, "parameter '", name, "' must be a volume or spectrum, not a ", (*obj)->tag());
-        return VolumeRegistry::instance().create(**obj, kind);
+        VolumePtr v = VolumeRegistry::instance().create(**obj, kind);
+        if (v->channels() != 0 && v->channels() != 1 && v->channels() != 3)
+            failAt(e.loc, "parameter '", name, "': a ", (*obj)->type(), " of ", v->channels(),
+                   " channels cannot give a spectrum (it needs 1 or 3 channels)");
+        return v;
     }
     return makeConstVolume(getSpectrum(p, name, kind));  // a number, <rgb>, <spectrum> or spectrum plugin
+}
+
+float FloatVolume::eval(const vec3& p) const {
+    if (!volume) return constant;
+    float v = 0.0f;
+    volume->evalChannels(p, &v);
+    return v;
+}
+
+ValueRange FloatVolume::range() const { return volume ? volume->range() : ValueRange{constant, constant}; }
+
+VolumePtr getChannelVolume(const Properties& p, const std::string& name, int channels) {
+    const Properties::Entry& e = p.require(name);
+    const PropertiesPtr* obj = std::get_if<PropertiesPtr>(&e.value);
+    const std::string want = strCat(channels, channels == 1 ? " channel" : " channels");
+    if (!obj || (*obj)->tag() != "volume") failAt(e.loc, "parameter '", name, "' must be a <volume> of ", want);
+    VolumePtr v = VolumeRegistry::instance().create(**obj, SpectrumKind::Unbounded);
+    if (v->channels() != channels)
+        failAt(e.loc, "parameter '", name, "' must be a volume of ", want, ", this ", (*obj)->type(), " has ", v->channels(),
+               v->channels() == 0 ? " (a spectrum)" : "");
+    return v;
+}
+
+FloatVolume getFloatVolume(const Properties& p, const std::string& name, float def) {
+    if (!p.present(name)) return FloatVolume{def, nullptr};
+    const Properties::Entry& e = p.require(name);
+    if (const PropertiesPtr* obj = std::get_if<PropertiesPtr>(&e.value); obj && (*obj)->tag() == "volume")
+        return FloatVolume{0.0f, getChannelVolume(p, name, 1)};
+    return FloatVolume{p.getFloat(name), nullptr};
 }
 
 }  // namespace iris

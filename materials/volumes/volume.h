@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "core/io/vol_reader.h"
 #include "core/math.h"
 #include "core/properties.h"
 #include "core/ray.h"
@@ -62,6 +63,14 @@ public:
     virtual ivec3 resolution() const { return ivec3(1); }
     /// True when eval is the same at every point (a constvolume).
     virtual bool isConstant() const { return false; }
+    /// The number of raw channels evalChannels gives (a grid's channel count; 1 for a constvolume
+    /// of a number, 3 for one of an <rgb>); 0 when there are none (a constvolume of a spectrum).
+    virtual int channels() const { return 0; }
+    /// The stored channels interpolated at the world point p, channels() floats, not upsampled
+    /// (Mitsuba 3 Volume::eval_1 / eval_6: the phase functions' parameters).
+    virtual void evalChannels(const vec3& p, float* out) const { (void)p, (void)out; }
+    /// The voxels of a grid volume (for checks of every stored value), or nullptr.
+    virtual const VolumeGridData* grid() const { return nullptr; }
 
     const mat4& toWorld() const { return toWorld_; }
     const mat4& toLocal() const { return toLocal_; }
@@ -87,7 +96,23 @@ mat4 readToWorld(const Properties& p);
 VolumePtr makeConstVolume(SpectrumPtr value, const mat4& toWorld = mat4(1.0f));
 
 /// A volume-valued parameter (Mitsuba 3 Properties::volume): a nested <volume> (VolumeRegistry), or
-/// any spectrum value (spectral/spectrum_params.h) as a constvolume; `def` when absent.
+/// any spectrum value (spectral/spectrum_params.h) as a constvolume; `def` when absent. A nested
+/// volume of other than 1 or 3 channels (a 6-channel grid) is an error at its line.
 VolumePtr getVolume(const Properties& p, const std::string& name, SpectrumKind kind, float def);
+
+/// A float parameter that may vary in space (Mitsuba 3 Properties::volume read with eval_1): a
+/// number, or a nested <volume> of one channel.
+struct FloatVolume {
+    float constant = 0.0f;
+    VolumePtr volume;  // when set, the value at a point is its one channel there
+    float eval(const vec3& p) const;
+    /// The smallest and largest value it can take.
+    ValueRange range() const;
+};
+FloatVolume getFloatVolume(const Properties& p, const std::string& name, float def);
+
+/// A nested <volume> `name` (required) whose raw channels a phase function reads: exactly
+/// `channels` of them (sggx's S: 6), else an error at its line.
+VolumePtr getChannelVolume(const Properties& p, const std::string& name, int channels);
 
 }  // namespace iris

@@ -37,8 +37,12 @@ ShapeChildren readChildren(const Properties& p) {
 
 /// A medium needs a boundary that separates its inside from the rest (Mitsuba: "interior" is the
 /// side the normals point away from): spheres are closed, cylinders (no caps) are not; a mesh must have every edge shared by
-/// exactly two triangles, with vertices welded by position (so that uv seams do not count).
+/// exactly two triangles, with vertices welded by position (so that uv seams do not count); an
+/// sdfgrid's surface is closed when it stays inside the grid (every sample on the grid's faces > 0).
 void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
+    if (s.type == ShapeDescription::Type::SdfGrid && !s.sdf->closed)
+        failAt(p.locationOf("interior"), "shape '", s.name, "' has an interior medium but its sdfgrid surface reaches the "
+               "grid's boundary (a sample on a face of the grid is <= 0), so it is not closed: a medium needs a closed boundary");
     if (s.type == ShapeDescription::Type::Cylinder)
         failAt(p.locationOf("interior"), "shape '", s.name, "' has an interior medium but a cylinder has no end caps: a "
                "medium needs a closed boundary (use a closed mesh, obj or ply, or a sphere)");
@@ -49,14 +53,19 @@ void checkClosedBoundary(const Properties& p, const ShapeDescription& s) {
                " edges belong to one triangle, or to more than two): a medium needs a closed boundary");
 }
 
+/// "a sphere", "a cylinder" or "an sdfgrid", for messages about shapes that are not meshes.
+const char* analyticTypeName(ShapeDescription::Type t) {
+    return t == ShapeDescription::Type::Sphere ? "a sphere" : t == ShapeDescription::Type::Cylinder ? "a cylinder" : "an sdfgrid";
+}
+
 /// The mesh_attribute textures of the shape's bsdf or emitter must name attributes of its mesh
-/// (checked here, per shape, because one bsdf may serve several shapes); spheres and cylinders
-/// have none.
+/// (checked here, per shape, because one bsdf may serve several shapes); spheres, cylinders and
+/// sdf grids have none.
 void checkAttributes(const Properties& tree, const ShapeDescription& s) {
     if (s.type == ShapeDescription::Type::Mesh)
         checkMeshAttributes(tree, s.mesh.get(), strCat("shape '", s.name, "'"));
     else
-        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (a ", s.type == ShapeDescription::Type::Sphere ? "sphere" : "cylinder", ")"));
+        checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (", analyticTypeName(s.type), ")"));
 }
 
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
@@ -67,6 +76,8 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
     }
     if (c.emitter) {
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
+        if (s.type == ShapeDescription::Type::SdfGrid)
+            failAt(c.emitter->location(), "an sdfgrid cannot be an area emitter (Mitsuba 3 does not allow it either)");
         if (c.emitter->type() != "area")
             failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area')");
         const PropertiesPtr* radiance = c.emitter->peekObject("radiance");

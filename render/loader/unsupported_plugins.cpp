@@ -16,7 +16,6 @@ IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caust
 IRIS_HINT(IntegratorRegistry, "ptracer", "iris traces from the camera only: use 'path' (the same expected image)");
 IRIS_HINT(IntegratorRegistry, "aov", "iris writes no AOV images: the 'moment' wrapper gives per-pixel first and second moments");
 IRIS_HINT(SensorRegistry, "thinlens", "iris has no depth of field: use 'perspective' (a pinhole, everything in focus)");
-IRIS_HINT(ShapeRegistry, "sdfgrid", "iris has no signed-distance shapes: convert the grid to a mesh (obj or ply)");
 IRIS_HINT(ShapeRegistry, "bsplinecurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
 IRIS_HINT(ShapeRegistry, "linearcurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");
 

@@ -12,43 +12,12 @@
 #include "core/sampling.h"
 #include "materials/phase/phase_function.h"
 #include "tests/support/bsdf_test_util.h"
+#include "tests/support/phase_test_util.h"
 
 using namespace iris;
 using namespace iris::test;
 
 namespace {
-
-/// A phase function seen through the BSDF interface: f·|cos θi| / pdf = p / pdf (so eval returns
-/// p / |cos θi|, which the χ² harness never looks at) and the same pdf.
-class PhaseAsBSDF final : public BSDF {
-public:
-    explicit PhaseAsBSDF(const PhaseFunction& p) : p_(p) {}
-    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
-        return SampledSpectrum(1, p_.eval(wo, wi) / std::max(std::abs(wi.z), 1e-6f));
-    }
-    float pdf(const vec3& wo, const vec3& wi, TransportMode) const override { return p_.pdf(wo, wi); }
-    std::optional<BSDFSample> sample(const vec3& wo, float, const vec2& u, TransportMode) const override {
-        const auto s = p_.sample(wo, u);
-        if (!s) return std::nullopt;
-        BSDFSample b;
-        b.wi = s->wi;
-        b.pdf = s->pdf;
-        b.f = SampledSpectrum(1, s->p / std::max(std::abs(s->wi.z), 1e-6f));
-        b.flags = kBSDFGlossy | kBSDFReflection | kBSDFTransmission;
-        return b;
-    }
-    uint32_t flags() const override { return kBSDFGlossy | kBSDFReflection | kBSDFTransmission; }
-
-private:
-    const PhaseFunction& p_;
-};
-
-std::shared_ptr<PhaseFunction> makePhase(const std::string& type, std::initializer_list<Param> params = {}) {
-    const SourceLocation loc{"<test>", 1};
-    Properties p("phase", type, loc);
-    for (const Param& kv : params) p.set(kv.first, kv.second, loc);
-    return PhaseFunctionRegistry::instance().create(p);
-}
 
 struct Case {
     const char* type;
@@ -60,19 +29,6 @@ std::shared_ptr<PhaseFunction> make(const Case& c) {
 }
 
 const Case kCases[] = {{"isotropic", 0}, {"rayleigh", 0}, {"hg", 0.0f}, {"hg", 0.3f}, {"hg", -0.5f}, {"hg", 0.9f}};
-
-/// ∫ p(wo, wi) dωi by uniform sphere sampling, and the mean of cos θ = −wo·wi under p.
-std::pair<double, double> integrate(const PhaseFunction& p, const vec3& wo, int n = 400000) {
-    Pcg32 rng(5, 7);
-    double sum = 0, mu = 0;
-    for (int i = 0; i < n; ++i) {
-        const vec3 wi = sampleUniformSphere(vec2(rng.uniform(), rng.uniform()));
-        const double v = p.eval(wo, wi) / uniformSpherePdf();
-        sum += v;
-        mu += v * -glm::dot(wo, wi);
-    }
-    return {sum / n, mu / n};
-}
 
 }  // namespace
 
@@ -93,44 +49,24 @@ TEST(PhaseFunctions, ChiSquareAgainstTheirPdf) {
 TEST(PhaseFunctions, ChiSquareRejectsAMismatchedPdf) {
     // Samples of hg(0.5) tested against the pdf of hg(0.3): the harness must reject them.
     const auto sampler = makePhase("hg", {{"g", 0.5f}}), wrong = makePhase("hg", {{"g", 0.3f}});
-    class Mixed final : public BSDF {
-    public:
-        Mixed(const PhaseFunction& s, const PhaseFunction& p) : s_(s), p_(p) {}
-        SampledSpectrum eval(const vec3&, const vec3&, TransportMode) const override { return SampledSpectrum(1, 1.0f); }
-        float pdf(const vec3& wo, const vec3& wi, TransportMode) const override { return p_.pdf(wo, wi); }
-        std::optional<BSDFSample> sample(const vec3& wo, float, const vec2& u, TransportMode) const override {
-            const auto s = s_.sample(wo, u);
-            BSDFSample b;
-            b.wi = s->wi;
-            b.pdf = p_.pdf(wo, s->wi);
-            b.f = SampledSpectrum(1, 1.0f);
-            b.flags = kBSDFGlossy | kBSDFReflection;
-            return b;
-        }
-        uint32_t flags() const override { return kBSDFGlossy | kBSDFReflection; }
-
-    private:
-        const PhaseFunction &s_, &p_;
-    };
-    const Mixed m(*sampler, *wrong);
-    EXPECT_FALSE(chi2Test(m, vec3(0, 0, 1)).passed);
+    EXPECT_FALSE(chi2Test(PhaseAsBSDF(*wrong, vec3(0.0f), sampler.get()), vec3(0, 0, 1)).passed);
 }
 
 TEST(PhaseFunctions, NormalisedSymmetricAndConsistentWithTheirSamples) {
     const vec3 wo = glm::normalize(vec3(0.2f, 0.4f, -0.9f));
     for (const Case& c : kCases) {
         const auto p = make(c);
-        const auto [integral, meanCos] = integrate(*p, wo);
+        const auto [integral, stdError, meanCos] = integratePhase(*p, vec3(0.0f), wo);
         EXPECT_NEAR(integral, 1.0, c.g > 0.8f ? 0.05 : 0.01) << c.type << " g=" << c.g;
         Pcg32 rng(1, 2);
         for (int i = 0; i < 2000; ++i) {
-            const auto s = p->sample(wo, vec2(rng.uniform(), rng.uniform()));
+            const auto s = p->sample(vec3(0.0f), wo, vec2(rng.uniform(), rng.uniform()));
             ASSERT_TRUE(s);
             EXPECT_NEAR(glm::length(s->wi), 1.0f, 1e-4f);
-            EXPECT_NEAR(s->p, p->eval(wo, s->wi), 1e-4f * s->p);
-            EXPECT_NEAR(s->pdf, p->pdf(wo, s->wi), 1e-4f * s->pdf);
+            EXPECT_NEAR(s->p, p->eval(vec3(0.0f), wo, s->wi), 1e-4f * s->p);
+            EXPECT_NEAR(s->pdf, p->pdf(vec3(0.0f), wo, s->wi), 1e-4f * s->pdf);
             EXPECT_NEAR(s->weight(), 1.0f, 1e-4f);
-            EXPECT_NEAR(p->eval(wo, s->wi), p->eval(s->wi, wo), 1e-5f * s->p);
+            EXPECT_NEAR(p->eval(vec3(0.0f), wo, s->wi), p->eval(vec3(0.0f), s->wi, wo), 1e-5f * s->p);
         }
     }
 }
@@ -144,7 +80,7 @@ TEST(PhaseFunctions, HenyeyGreensteinMeanCosineIsG) {
         double s = 0, s2 = 0;
         const int n = 200000;
         for (int i = 0; i < n; ++i) {
-            const double mu = -glm::dot(wo, p->sample(wo, vec2(rng.uniform(), rng.uniform()))->wi);
+            const double mu = -glm::dot(wo, p->sample(vec3(0.0f), wo, vec2(rng.uniform(), rng.uniform()))->wi);
             s += mu;
             s2 += mu * mu;
         }
@@ -154,18 +90,18 @@ TEST(PhaseFunctions, HenyeyGreensteinMeanCosineIsG) {
     // g > 0 scatters forward: wi near −wo (the ray goes on) is the most likely direction.
     const auto fwd = makePhase("hg", {{"g", 0.7f}});
     const vec3 wo(0, 0, 1);
-    EXPECT_GT(fwd->eval(wo, -wo), 10 * fwd->eval(wo, wo));
+    EXPECT_GT(fwd->eval(vec3(0.0f), wo, -wo), 10 * fwd->eval(vec3(0.0f), wo, wo));
 }
 
 TEST(PhaseFunctions, RayleighClosedForm) {
     const auto p = makePhase("rayleigh");
     const vec3 wo(0, 0, 1);
-    EXPECT_NEAR(p->eval(wo, -wo), 6.0 / (16.0 * M_PI), 1e-6);  // cos θ = 1
-    EXPECT_NEAR(p->eval(wo, vec3(1, 0, 0)), 3.0 / (16.0 * M_PI), 1e-6);  // cos θ = 0
-    EXPECT_NEAR(p->eval(wo, wo), 6.0 / (16.0 * M_PI), 1e-6);  // backward = forward
+    EXPECT_NEAR(p->eval(vec3(0.0f), wo, -wo), 6.0 / (16.0 * M_PI), 1e-6);  // cos θ = 1
+    EXPECT_NEAR(p->eval(vec3(0.0f), wo, vec3(1, 0, 0)), 3.0 / (16.0 * M_PI), 1e-6);  // cos θ = 0
+    EXPECT_NEAR(p->eval(vec3(0.0f), wo, wo), 6.0 / (16.0 * M_PI), 1e-6);  // backward = forward
     // The sampled cosine's CDF (μ³ + 3μ + 4)/8 at a few points (Frisvad 2011).
     for (const float u : {0.0f, 0.1f, 0.5f, 0.9f, 0.999f}) {
-        const float mu = -glm::dot(wo, p->sample(wo, vec2(u, 0.3f))->wi);
+        const float mu = -glm::dot(wo, p->sample(vec3(0.0f), wo, vec2(u, 0.3f))->wi);
         EXPECT_NEAR((mu * mu * mu + 3 * mu + 4) / 8, u, 1e-5f) << u;
     }
 }
