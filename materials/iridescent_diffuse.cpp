@@ -8,9 +8,9 @@
 //              Mitsuba documentation "plastic"), with the interface transmittances (1 − F)
 //              replaced by the stack's transmittance T (film absorption included, T reciprocal)
 //              and the internal reflectance of the binder side replaced by the stack's
-//              hemispherical reflectance from below r_int (FilmCoating::
+//              hemispherical reflectance from below r_int (ThinFilmCoating::
 //              internalHemisphericalReflectance, Gauss–Legendre quadrature per wavelength;
-//              tabulated at construction for a constant thickness, see FilmCoatingSpec::RintCache).
+//              tabulated at construction for a constant thickness, see ThinFilmCoatingSpec::RintCache).
 //              The internal bounces between base and film are summed incoherently (the binder is
 //              thick), the 1/η² accounts for the radiance compression inside the binder.
 // For the rough coat the diffuse term uses the same macro-surface T and r_int (the smooth-coat
@@ -21,7 +21,7 @@
 #include "core/sampling.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
-#include "materials/film_coating.h"
+#include "materials/thin_film_coating.h"
 #include "materials/textures/texture_params.h"
 
 #include <limits>
@@ -31,7 +31,7 @@ namespace {
 
 class IridescentDiffuseBSDF final : public BSDF {
 public:
-    IridescentDiffuseBSDF(const FilmCoatingArgs& c, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
+    IridescentDiffuseBSDF(const ThinFilmCoatingArgs& c, const SampledSpectrum& rho, const MicrofacetDistribution& dist,
                           bool smooth)
         : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist), smooth_(smooth) {
         const int n = coating_.size();
@@ -146,7 +146,7 @@ private:
         return p;
     }
 
-    FilmCoating coating_;
+    ThinFilmCoating coating_;
     SampledSpectrum base_;
     float rhoAvg_ = 0;
     mutable float woZ_ = std::numeric_limits<float>::quiet_NaN();
@@ -157,23 +157,23 @@ private:
 
 class IridescentDiffuseMaterial final : public Material {
 public:
-    IridescentDiffuseMaterial(FilmCoatingSpec spec, SpectrumTexturePtr rho, MicrofacetDistribution dist, bool smooth)
+    IridescentDiffuseMaterial(ThinFilmCoatingSpec spec, SpectrumTexturePtr rho, MicrofacetDistribution dist, bool smooth)
         : spec_(std::move(spec)), rho_(std::move(rho)), dist_(dist), smooth_(smooth) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         const SampledSpectrum rho = map(rho_->eval(sp.tex, wl), [](float x) { return std::clamp(x, 0.0f, 1.0f); });
-        return arena.make<IridescentDiffuseBSDF>(FilmCoatingArgs{spec_, sp.tex, wl, arena}, rho, dist_, smooth_);
+        return arena.make<IridescentDiffuseBSDF>(ThinFilmCoatingArgs{spec_, sp.tex, wl, arena}, rho, dist_, smooth_);
     }
 
 private:
-    FilmCoatingSpec spec_;
+    ThinFilmCoatingSpec spec_;
     SpectrumTexturePtr rho_;
     MicrofacetDistribution dist_;
     bool smooth_;
 };
 
 std::shared_ptr<Material> createIridescentDiffuse(const Properties& p) {
-    FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
+    ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(p, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
     // The truncated sum loops over `bounces` per evaluation: an absurd count would hang the render.
     if (spec.bounces > 1000)
         failAt(p.locationOf("bounces"), "iridescent_diffuse: bounces must be in [0, 1000], got ", spec.bounces);

@@ -1,7 +1,7 @@
 // Thin-film interference on a smooth or rough interface (plugin "thinfilm"): a microfacet
 // reflection lobe whose Fresnel term is the exact reflectance of a film stack (film + optional
 // extra layers) over a conductor or dielectric substrate, at each path wavelength and at the
-// microfacet angle (materials/film_coating.h):
+// microfacet angle (materials/thin_film_coating.h):
 //   rough:  f(wo, wi) = R_stack(λ, wo·h) D(h) G(wi, wo, h) / (4 cosθo cosθi)   (Walter et al. 2007
 //           eq. 20 with F replaced by the stack reflectance; thesis 000 eq. 2.6),
 //   smooth: delta reflection with coefficient R_stack(λ, cosθo).
@@ -17,7 +17,7 @@
 #include "core/registry.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
-#include "materials/film_coating.h"
+#include "materials/thin_film_coating.h"
 
 #include <limits>
 
@@ -26,7 +26,7 @@ namespace {
 
 class ThinFilmBSDF final : public BSDF {
 public:
-    ThinFilmBSDF(const FilmCoatingArgs& c, const MicrofacetDistribution& dist, bool smooth)
+    ThinFilmBSDF(const ThinFilmCoatingArgs& c, const MicrofacetDistribution& dist, bool smooth)
         : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist), smooth_(smooth) {}
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
@@ -72,7 +72,7 @@ public:
     uint32_t flags() const override { return kBSDFReflection | (smooth_ ? kBSDFSpecular : kBSDFGlossy); }
 
 private:
-    FilmCoating coating_;
+    ThinFilmCoating coating_;
     MicrofacetDistribution dist_;
     bool smooth_;
 };
@@ -80,7 +80,7 @@ private:
 /// Smooth film on a dielectric with both reflection and transmission (see the file comment).
 class ThinFilmTransmissionBSDF final : public BSDF {
 public:
-    explicit ThinFilmTransmissionBSDF(const FilmCoatingArgs& c) : coating_(c.spec, c.tex, c.wl, c.arena) {}
+    explicit ThinFilmTransmissionBSDF(const ThinFilmCoatingArgs& c) : coating_(c.spec, c.tex, c.wl, c.arena) {}
 
     SampledSpectrum eval(const vec3&, const vec3&, TransportMode) const override {
         return SampledSpectrum(coating_.size());
@@ -122,7 +122,7 @@ public:
     }
 
 private:
-    FilmCoating coating_;
+    ThinFilmCoating coating_;
 };
 
 /// Rough film on a dielectric with reflection and transmission: Walter et al. 2007 (eqs. 20–21, the
@@ -132,7 +132,7 @@ private:
 /// the media (the stack is then lit from the substrate side).
 class ThinFilmRoughTransmissionBSDF final : public BSDF {
 public:
-    ThinFilmRoughTransmissionBSDF(const FilmCoatingArgs& c, const MicrofacetDistribution& dist)
+    ThinFilmRoughTransmissionBSDF(const ThinFilmCoatingArgs& c, const MicrofacetDistribution& dist)
         : coating_(c.spec, c.tex, c.wl, c.arena), dist_(dist) {}
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFGlossy; }
@@ -258,7 +258,7 @@ private:
         return r + t > 0 ? r / (r + t) : 1.0f;
     }
 
-    FilmCoating coating_;
+    ThinFilmCoating coating_;
     MicrofacetDistribution dist_;
     mutable float cacheCos_ = std::numeric_limits<float>::quiet_NaN();
     mutable bool cacheInside_ = false;
@@ -267,19 +267,19 @@ private:
 
 class ThinFilmMaterial final : public Material {
 public:
-    ThinFilmMaterial(FilmCoatingSpec spec, MicrofacetDistribution dist, bool smooth, bool transmission)
+    ThinFilmMaterial(ThinFilmCoatingSpec spec, MicrofacetDistribution dist, bool smooth, bool transmission)
         : spec_(std::move(spec)), dist_(dist), smooth_(smooth), transmission_(transmission) {}
 
     const BSDF* getBSDF(const ShadingPoint& sp, SampledWavelengths& wl, Arena& arena) const override {
         // The coating is built in place inside the BSDF (no copy of its per-wavelength arrays).
-        const FilmCoatingArgs c{spec_, sp.tex, wl, arena};
+        const ThinFilmCoatingArgs c{spec_, sp.tex, wl, arena};
         if (transmission_ && smooth_) return arena.make<ThinFilmTransmissionBSDF>(c);
         if (transmission_) return arena.make<ThinFilmRoughTransmissionBSDF>(c, dist_);
         return arena.make<ThinFilmBSDF>(c, dist_, smooth_);
     }
 
 private:
-    FilmCoatingSpec spec_;
+    ThinFilmCoatingSpec spec_;
     MicrofacetDistribution dist_;
     bool smooth_, transmission_;
 };
@@ -296,7 +296,7 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
     } else {
         failAt(p.locationOf("substrate"), "substrate must be 'conductor' or 'dielectric', got '", substrate, "'");
     }
-    FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(p, defEta, defK);
+    ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(p, defEta, defK);
     // The truncated sum loops over `bounces` per evaluation: an absurd count would hang the render.
     if (spec.bounces > 1000) failAt(p.locationOf("bounces"), "thinfilm: bounces must be in [0, 1000], got ", spec.bounces);
     const MicrofacetType type = MicrofacetDistribution::parseType(p.getString("distribution", "ggx"));
@@ -316,7 +316,7 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
             if (spec.substrateEta.eval(l) != eta0)
                 failAt(loc, "transmission needs a non-dispersive substrate_eta (directions would depend on λ)");
         }
-        if (spec.rgbMode == FilmRGBMode::BelcourBarla)
+        if (spec.rgbMode == ThinFilmRGBMode::BelcourBarla)
             failAt(loc, "transmission is not available with rgb_mode 'belcour_barla'");
     }
     return std::make_shared<ThinFilmMaterial>(std::move(spec), MicrofacetDistribution(type, au, av, visible), smooth,

@@ -17,7 +17,7 @@
 #pragma once
 
 #include "core/math.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 namespace iris {
 

@@ -1,7 +1,7 @@
 // The thin-film models that production formats ship, evaluated as they are written, and the
 // conversions they rely on. Every function here returns what its source specifies, approximations
 // included: they are the objects of study of experiments/industry_thin_film.py, measured against
-// iris's exact per-wavelength interference (spectral/film_stack.h). docs/gltf.md §Thin film.
+// iris's exact per-wavelength interference (spectral/thin_film_stack.h). docs/gltf.md §Thin film.
 //
 //  * KHR_materials_iridescence (Khronos glTF extension, ratified 2022; README "Iridescence Fresnel",
 //    sections "Material Interfaces", "Phase Shift", "Analytic Spectral Integration"): Belcour & Barla
@@ -13,7 +13,7 @@
 #pragma once
 
 #include "core/math.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 namespace iris {
 
@@ -45,7 +45,7 @@ complexd gulbrandsenIor(double r, double g);
 
 /// The exact unpolarised reflectance of one film (real index filmIor, thickness in nm) in an
 /// exterior of real index outsideIor over a substrate of complex index, at one wavelength
-/// (Airy sum, spectral/film_stack.h). d = 0 gives the bare substrate's Fresnel reflectance.
+/// (Airy sum, spectral/thin_film_stack.h). d = 0 gives the bare substrate's Fresnel reflectance.
 double exactThinFilmReflectance(double lambdaNm, double cosTheta1, double outsideIor, double filmIor, double thicknessNm,
                                 complexd substrate);
 

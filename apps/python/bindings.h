@@ -18,7 +18,7 @@ namespace py = pybind11;
 
 void bindImages(py::module_& m);    // read / write EXR (image_bindings.cpp)
 void bindRender(py::module_& m);    // scenes and rendering (render_bindings.cpp)
-void bindFilm(py::module_& m);      // thin-film stack optics (film_bindings.cpp)
+void bindFilm(py::module_& m);      // thin-film stack optics (thin_film_bindings.cpp)
 void bindMaterials(py::module_& m); // BSDF eval / pdf / sample (material_bindings.cpp)
 void bindSpectra(py::module_& m);   // CIE data, XYZ, colour spaces, RGB upsampling (spectra_bindings.cpp)
 void bindThinFilmIndustry(py::module_& m);  // the industry's RGB thin films (thin_film_industry_bindings.cpp)

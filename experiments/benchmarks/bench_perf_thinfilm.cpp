@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "materials/fresnel.h"
-#include "spectral/film_airy_batch.h"
-#include "spectral/film_airy.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_airy_batch.h"
+#include "spectral/thin_film_airy.h"
+#include "spectral/thin_film_stack.h"
 #include "spectral/sampled_spectrum.h"
 
 using namespace iris;
@@ -41,7 +41,7 @@ void BM_ConductorFresnel4(benchmark::State& st) {
 }
 BENCHMARK(BM_ConductorFresnel4);
 
-/// Exact Airy single film over the conductor (spectral/film_stack.h) at 4 wavelengths.
+/// Exact Airy single film over the conductor (spectral/thin_film_stack.h) at 4 wavelengths.
 void BM_AiryFilm4(benchmark::State& st) {
     float c = 0.3f;
     for (auto _ : st) {
@@ -68,7 +68,7 @@ void BM_AiryFilm4Reference(benchmark::State& st) {
 }
 BENCHMARK(BM_AiryFilm4Reference);
 
-/// The fast path as FilmCoating uses it: film ñ1², 1/ñ1², k0 d and the substrate's ñ², 1/ñ² hoisted
+/// The fast path as ThinFilmCoating uses it: film ñ1², 1/ñ1², k0 d and the substrate's ñ², 1/ñ² hoisted
 /// once per path (here: outside the loop), only the angle-dependent work per evaluation.
 void BM_AiryFilm4Hoisted(benchmark::State& st) {
     AiryFilmConstants film[kN];
@@ -81,7 +81,7 @@ void BM_AiryFilm4Hoisted(benchmark::State& st) {
     for (auto _ : st) {
         float r[kN];
         for (int i = 0; i < kN; ++i) {
-            FilmStackResult res;
+            ThinFilmStackResult res;
             if (!airySingleFilmFast(c, 1.0, film[i], sub[i], res))
                 res = airySingleFilmReference(kLambda[i], c, 1.0, kFilm, kMetal[i]);
             r[i] = float(res.R());
@@ -93,7 +93,7 @@ void BM_AiryFilm4Hoisted(benchmark::State& st) {
 }
 BENCHMARK(BM_AiryFilm4Hoisted);
 
-/// The batched kernel as FilmCoating calls it (spectral/film_airy_batch.h): the four wavelengths in
+/// The batched kernel as ThinFilmCoating calls it (spectral/thin_film_airy_batch.h): the four wavelengths in
 /// one SIMD group, constants hoisted into SoA arrays, the angle terms per evaluation.
 void BM_AiryFilm4Batch(benchmark::State& st) {
     alignas(32) double v[9][kN];
@@ -134,7 +134,7 @@ void BM_TransferMatrix4(benchmark::State& st) {
     float c = 0.3f;
     for (auto _ : st) {
         float r[kN];
-        for (int i = 0; i < kN; ++i) r[i] = float(filmStackRT(kLambda[i], c, 1.0, layers, kMetal[i]).R());
+        for (int i = 0; i < kN; ++i) r[i] = float(thinFilmStackRT(kLambda[i], c, 1.0, layers, kMetal[i]).R());
         benchmark::DoNotOptimize(r);
         c = nextCos(c);
     }

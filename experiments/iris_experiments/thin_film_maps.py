@@ -2,7 +2,7 @@
 reflectance over film thickness × angle, from exact per-wavelength interference (the reference)
 and from the RGB approximations, and their CIEDE2000 and relative luminance errors.
 
-The reference is the film's unpolarised Airy reflectance R(λ) (iris.film.stack_rt, mode "airy")
+The reference is the film's unpolarised Airy reflectance R(λ) (iris.thin_film.stack_rt, mode "airy")
 seen under D65, XYZ = Σ R·D65·cmf / Σ D65·ȳ, in linear Rec.709 (iris.color.xyz_to): the colour a
 white (D65) light gives in iris's spectral renders. Metallic bases are complex indices by
 Gulbrandsen 2014 from the upsampled base colour (edge tint = the colour), as gltf_pbr does."""
@@ -20,7 +20,7 @@ def substrate(iris, base, lam):
     if kind == "dielectric":
         return np.full(np.shape(lam), complex(value))
     r = np.clip(iris.color.rgb_to_spectrum(value)(lam), 0.0, 0.99)
-    return iris.film.gulbrandsen_ior(r, r)
+    return iris.thin_film.gulbrandsen_ior(r, r)
 
 
 def exact_rgb(iris, base, film_ior, thickness, cos, lam):
@@ -30,7 +30,7 @@ def exact_rgb(iris, base, film_ior, thickness, cos, lam):
     sub = substrate(iris, base, lam)
     out = np.zeros((len(thickness), len(cos), 3))
     for i, d in enumerate(thickness):
-        r = iris.film.stack_rt([(film_ior, float(d))], lam[None, :], cos[:, None], 1.0, sub[None, :], mode="airy")
+        r = iris.thin_film.stack_rt([(film_ior, float(d))], lam[None, :], cos[:, None], 1.0, sub[None, :], mode="airy")
         R = 0.5 * (r.Rs + r.Rp)                           # (A, L) unpolarised
         out[i] = iris.color.xyz_to((R @ w) / norm)
     return out
@@ -39,11 +39,11 @@ def exact_rgb(iris, base, film_ior, thickness, cos, lam):
 def point_rgb(iris, base, film_ior, thickness, cos):
     """iris's RGB mode ("point"): the exact film at the three channel wavelengths."""
     lam = np.array(CHANNELS_NM)
-    sub = substrate(iris, base, lam) if base[0] == "dielectric" else iris.film.gulbrandsen_ior(
+    sub = substrate(iris, base, lam) if base[0] == "dielectric" else iris.thin_film.gulbrandsen_ior(
         np.clip(np.array(base[1]), 0, 0.99), np.clip(np.array(base[1]), 0, 0.99))
     out = np.zeros((len(thickness), len(cos), 3))
     for i, d in enumerate(thickness):
-        r = iris.film.stack_rt([(film_ior, float(d))], lam[None, :], cos[:, None], 1.0, sub[None, :], mode="airy")
+        r = iris.thin_film.stack_rt([(film_ior, float(d))], lam[None, :], cos[:, None], 1.0, sub[None, :], mode="airy")
         out[i] = 0.5 * (r.Rs + r.Rp)
     return out
 
@@ -51,7 +51,7 @@ def point_rgb(iris, base, film_ior, thickness, cos):
 def khr_rgb(iris, base, film_ior, thickness, cos):
     """KHR_materials_iridescence's iridescent_fresnel as written (base F0 = 0.04 or the colour)."""
     f0 = np.full(3, ((base[1] - 1) / (base[1] + 1)) ** 2) if base[0] == "dielectric" else np.array(base[1])
-    return iris.film.khr_iridescence_rgb(film_ior, thickness[:, None], cos[None, :], np.minimum(f0, 0.999))
+    return iris.thin_film.khr_iridescence_rgb(film_ior, thickness[:, None], cos[None, :], np.minimum(f0, 0.999))
 
 
 def belcour_barla_rgb(iris, base, film_ior, thickness, cos):
@@ -61,8 +61,8 @@ def belcour_barla_rgb(iris, base, film_ior, thickness, cos):
         sub = complex(base[1])
     else:
         c = np.clip(np.array(base[1]), 0, 0.99)
-        sub = iris.film.gulbrandsen_ior(c, c)
-    return iris.film.belcour_barla_rgb(film_ior, thickness[:, None], cos[None, :], 1.0, sub)
+        sub = iris.thin_film.gulbrandsen_ior(c, c)
+    return iris.thin_film.belcour_barla_rgb(film_ior, thickness[:, None], cos[None, :], 1.0, sub)
 
 
 MODELS = {"khr_iridescence": khr_rgb, "belcour_barla": belcour_barla_rgb, "point": point_rgb}

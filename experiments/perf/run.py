@@ -367,7 +367,7 @@ def t4_thin_film(ctx):
     cond, airy = med("BM_ConductorFresnel4", "cpu_time"), med("BM_AiryFilm4", "cpu_time")
     tm1, tm10 = med("BM_TransferMatrix4/1", "cpu_time"), med("BM_TransferMatrix4/10", "cpu_time")
     cw, aw = med("BM_ConductorFresnel4", "real_time"), med("BM_AiryFilm4", "real_time")
-    batch = med("BM_AiryFilm4Batch", "cpu_time")  # the SIMD kernel FilmCoating uses
+    batch = med("BM_AiryFilm4Batch", "cpu_time")  # the SIMD kernel ThinFilmCoating uses
     r = airy / cond
     ctx.m["thin_film"] = {"unit": js["benchmarks"][0].get("time_unit", "ns"), "conductor4_cpu": cond, "airy4_cpu": airy,
                           "tm1_4_cpu": tm1, "tm10_4_cpu": tm10, "conductor4_wall": cw, "airy4_wall": aw,
@@ -375,7 +375,7 @@ def t4_thin_film(ctx):
                           "ratio_airy_conductor_wall": aw / cw, "airy4_batch_cpu": batch,
                           "ratio_airy_batch_conductor": batch / cond if batch else None}
     ctx.row("4", "Thin film: exact Airy one-film R at 4 λ ÷ conductor Fresnel at 4 λ",
-            f"{r:.2f}× ({airy:.0f} ns vs {cond:.0f} ns CPU; batched as in FilmCoating: {batch:.0f} ns = "
+            f"{r:.2f}× ({airy:.0f} ns vs {cond:.0f} ns CPU; batched as in ThinFilmCoating: {batch:.0f} ns = "
             f"{batch / cond:.2f}×)", "≤ 4×", r <= 4.0,
             f"{r / 4:.2f}× the target" if r > 4 else f"{100 * (1 - r / 4):.0f} % below")
     ctx.row("4", "Thin film: 10-layer transfer matrix at 4 λ (reported, no target)",
@@ -640,9 +640,9 @@ def method_text(ctx):
                  "Instructions: callgrind, 64×64, 6 spp − 2 spp, as for target 2.")
     L.append("4. `bench_perf_thinfilm` (Google Benchmark, median of 3 repetitions, CPU time): `fresnelConductor` "
              "(materials/fresnel.h, SampledSpectrum overload, float) at 4 wavelengths vs 4 calls of `airySingleFilm` "
-             "(spectral/film_stack.h, complex double), one call of the batched kernel `airySingleFilmBatch` "
-             "(spectral/film_airy_batch.h, 4 wavelengths in one SIMD group, constants hoisted as FilmCoating hoists them) "
-             "and 4 calls of `filmStackRT` with 10 layers.")
+             "(spectral/thin_film_stack.h, complex double), one call of the batched kernel `airySingleFilmBatch` "
+             "(spectral/thin_film_airy_batch.h, 4 wavelengths in one SIMD group, constants hoisted as ThinFilmCoating hoists them) "
+             "and 4 calls of `thinFilmStackRT` with 10 layers.")
     L.append("5. `bench_perf_tables`: `buildRoughTables` at `RoughTableResolution{}` inside a "
              "`tbb::global_control` of 2 threads (one iteration, wall time); `readRoughTables` of a file written "
              "by `writeRoughTables` (wall time per read); laziness: each scene is loaded and rendered at 1 spp in one "
@@ -757,11 +757,11 @@ def wins_text(ctx):
     if "thinfilm_airy" in P and share(P["thinfilm_airy"], r"__divdc3|__muldc3") > 2:
         p = P["thinfilm_airy"]
         div, cx = share(p, r"__divdc3|__muldc3"), share(p, r"__csqrt|__cexp|hypot|sincos")
-        L.append(f"- **Complex division in the Airy formula** (spectral/film_stack.cpp, `airySingleFilm` and its "
+        L.append(f"- **Complex division in the Airy formula** (spectral/thin_film_stack.cpp, `airySingleFilm` and its "
                  f"`filmInterfaces` helper): libgcc's `__divdc3`/`__muldc3` take {div:.0f} % of the Airy benchmark. "
                  "`std::complex<double>` division follows C Annex G (inf/NaN recovery) unless the file is compiled "
                  "with `-fcx-limited-range`; setting that flag on this one source file "
-                 "(`set_source_files_properties(spectral/film_stack.cpp PROPERTIES COMPILE_OPTIONS -fcx-limited-range)`) "
+                 "(`set_source_files_properties(spectral/thin_film_stack.cpp PROPERTIES COMPILE_OPTIONS -fcx-limited-range)`) "
                  "or writing the divisions as `a * conj(b) / norm(b)` inlines them. Expected gain: most of that share. "
                  f"`csqrt`, `cexp`, `hypot`, `sincos` take another {cx:.0f} %; for a lossless film (real ñ₁ below the "
                  "critical angle) the phase factor e^{2iδ} is a single `sincos`, and |r|² needs no `hypot`.")
@@ -861,7 +861,7 @@ def payg_text(ctx):
              "chromaticity grid is built lazily (`std::call_once`) at the first spectral lookup, never in RGB mode.\n"
              "- RGB→spectrum grid (`RGBSpectrumGrid::instance()`, spectral/rgb_spectrum_grid.cpp): requested only by "
              "bitmap textures in spectral mode (materials/textures/bitmap_texture.cpp); measured above (`built()`).\n"
-             "- Film stacks: the film-stack optics (spectral/film_stack.*) are evaluated per wavelength at shading "
+             "- Film stacks: the film-stack optics (spectral/thin_film_stack.*) are evaluated per wavelength at shading "
              "time by the thin-film materials only; nothing is precomputed for scenes without them.\n")
     return "\n".join(L)
 

@@ -5,9 +5,9 @@ Scans README.md and docs/*.md (and the other Markdown files given with --also). 
 is checked when it is
   * a repository path: no spaces, a '/' in it, and its first component a top-level folder of the
     repository (or '..' from the document's folder) — it must exist. A trailing '/' means a folder;
-    '*' and '<...>' are wildcards (`film_airy*`, `tests/<layer>/`), `{h,cpp}` expands to each
-    alternative, and a path without extension names the files it starts (`spectral/film_stack`
-    for film_stack.h and .cpp). Paths under build/ (what a build writes) are not checked, and bare
+    '*' and '<...>' are wildcards (`thin_film_airy*`, `tests/<layer>/`), `{h,cpp}` expands to each
+    alternative, and a path without extension names the files it starts (`spectral/thin_film_stack`
+    for thin_film_stack.h and .cpp). Paths under build/ (what a build writes) are not checked, and bare
     file names (`out.exr`, `report.md`) are outputs, not repository paths;
   * a call-like name `name()` or `Scope::name()` (arguments allowed): the last identifier must be
     defined or used somewhere in the C++ or Python sources.

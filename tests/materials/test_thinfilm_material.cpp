@@ -15,8 +15,8 @@
 #include "materials/microfacet.h"
 #include "spectral/cie.h"
 #include "spectral/color_space.h"
-#include "materials/film_coating.h"
-#include "spectral/film_stack.h"
+#include "materials/thin_film_coating.h"
+#include "spectral/thin_film_stack.h"
 #include "tests/support/bsdf_test_util.h"
 #include "tests/support/render_test_scenes.h"
 
@@ -160,10 +160,10 @@ TEST(ThinFilmMaterial, SpectralModeMatchesStackAndPhaseModes) {
         EXPECT_NEAR(exact[k], airySingleFilm(wl.lambda(k), co, 1.0, film, sub).R(), 2e-6);
         EXPECT_NEAR(inc[k], incoherentSingleFilm(wl.lambda(k), co, 1.0, film, sub).R(), 2e-6);
         EXPECT_NEAR(trunc[k], exact[k], 2e-6);
-        const FilmStackResult tb = truncatedSingleFilm(wl.lambda(k), co, 1.0, film, sub, 1);  // clamped per polarisation
+        const ThinFilmStackResult tb = truncatedSingleFilm(wl.lambda(k), co, 1.0, film, sub, 1);  // clamped per polarisation
         EXPECT_NEAR(twoBeam[k], 0.5 * (std::min(tb.Rs, 1.0) + std::min(tb.Rp, 1.0)), 2e-6);
         const Layer stack[2] = {film, {complexd(2.3, 0), 60.0}};
-        EXPECT_NEAR(layered[k], filmStackRT(wl.lambda(k), co, 1.0, stack, sub).R(), 2e-6);
+        EXPECT_NEAR(layered[k], thinFilmStackRT(wl.lambda(k), co, 1.0, stack, sub).R(), 2e-6);
         maxDiffInc = std::max(maxDiffInc, std::abs(inc[k] - exact[k]));
     }
     EXPECT_GT(maxDiffInc, 0.01f);  // interference is really there
@@ -190,7 +190,7 @@ TEST(BelcourBarla, FourierSeriesEqualsAiryAtOneWavelength) {
             for (double co : {1.0, 0.6, 0.2}) {
                 for (double d : {80.0, 333.0, 1200.0}) {
                     for (double lambda : {400.0, 530.0, 700.0}) {
-                        const FilmStackResult ex = airySingleFilm(lambda, co, 1.0, Layer{complexd(n2, 0), d}, sub);
+                        const ThinFilmStackResult ex = airySingleFilm(lambda, co, 1.0, Layer{complexd(n2, 0), d}, sub);
                         const double s = airyFourierAt(airyFourier(0, co, 1.0, n2, d, sub), lambda, 400);
                         const double p = airyFourierAt(airyFourier(1, co, 1.0, n2, d, sub), lambda, 400);
                         EXPECT_NEAR(s, ex.Rs, 1e-9) << sub << " " << n2 << " " << co << " " << d;
@@ -364,23 +364,23 @@ TEST(ThinFilmMaterial, NamedConductorSubstrate) {
 TEST(IridescentDiffuse, InternalReflectanceCacheMatchesQuadrature) {
     for (float d : {0.0f, 300.0f, 5000.0f}) {
         auto props = makeProps("iridescent_diffuse", {{"thickness", d}, {"film_ior", 1.8f}, {"int_ior", 1.5f}});
-        FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(*props, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
+        ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(*props, 1.5f, 0.0f, 300.0f, "int_ior", nullptr);
         spec.precomputeInternalReflectance();
         ASSERT_TRUE(spec.rintCache);
         Arena arena;
         double maxErr = 0;
         for (float u : {0.01f, 0.13f, 0.5f, 0.77f, 0.99f}) {
             const SampledWavelengths wl = SampledWavelengths::sampleUniform(u, 8);
-            const FilmCoating c(spec, TextureQuery{}, wl, arena);
+            const ThinFilmCoating c(spec, TextureQuery{}, wl, arena);
             for (int k = 0; k < 8; ++k)
                 maxErr = std::max(maxErr, std::abs(c.internalHemisphericalReflectance(k) - c.internalHemisphericalReflectanceDirect(k)));
         }
         EXPECT_LT(maxErr, d > 1000 ? 2e-3 : 1e-5) << d;
-        const FilmCoating rgb(spec, TextureQuery{}, SampledWavelengths::rgb(defaultChannelWavelengths()), arena);
+        const ThinFilmCoating rgb(spec, TextureQuery{}, SampledWavelengths::rgb(defaultChannelWavelengths()), arena);
         for (int k = 0; k < 3; ++k)
             EXPECT_FLOAT_EQ(float(rgb.internalHemisphericalReflectance(k)), float(rgb.internalHemisphericalReflectanceDirect(k)));
         // Other channel wavelengths: computed directly.
-        const FilmCoating rgb2(spec, TextureQuery{}, SampledWavelengths::rgb(vec3(680, 520, 400)), arena);
+        const ThinFilmCoating rgb2(spec, TextureQuery{}, SampledWavelengths::rgb(vec3(680, 520, 400)), arena);
         EXPECT_EQ(rgb2.internalHemisphericalReflectance(2), rgb2.internalHemisphericalReflectanceDirect(2));
     }
 }

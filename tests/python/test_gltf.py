@@ -1,5 +1,5 @@
 """glTF from Python: iris.load_file reads .gltf/.glb and renders in both modes; the glTF material's
-thin-film readings are selectable by rgb_mode; iris.film.khr_iridescence_rgb and gulbrandsen_ior
+thin-film readings are selectable by rgb_mode; iris.thin_film.khr_iridescence_rgb and gulbrandsen_ior
 behave as their formulas say; bad input raises iris.Error naming it."""
 import unittest
 
@@ -48,19 +48,19 @@ class ThinFilmReadings(unittest.TestCase):
         base = (1 + np.sqrt(f0 + 1e-4)) / (1 - np.sqrt(f0 + 1e-4))
         R23 = schlick(((base - film) / (base + film)) ** 2, cos2)
         expected = R12 + (1 - R12) ** 2 * R23 / (1 - R12 * R23)
-        F = iris.film.khr_iridescence_rgb(film, 1e5, cos1, f0)
+        F = iris.thin_film.khr_iridescence_rgb(film, 1e5, cos1, f0)
         np.testing.assert_allclose(F, np.full(3, expected), rtol=1e-12)
-        self.assertEqual(iris.film.khr_iridescence_rgb(film, [100, 200, 300], cos1, [0.04, 0.5, 0.9]).shape, (3, 3))
+        self.assertEqual(iris.thin_film.khr_iridescence_rgb(film, [100, 200, 300], cos1, [0.04, 0.5, 0.9]).shape, (3, 3))
         with self.assertRaises(iris.Error):
-            iris.film.khr_iridescence_rgb(film, -1.0, cos1, f0)
+            iris.thin_film.khr_iridescence_rgb(film, -1.0, cos1, f0)
 
     def test_gulbrandsen_keeps_the_normal_reflectivity(self):
         r = np.array([0.1, 0.5, 0.9])
-        n = iris.film.gulbrandsen_ior(r, 0.5)
+        n = iris.thin_film.gulbrandsen_ior(r, 0.5)
         R = np.abs((n - 1) / (n + 1)) ** 2
         np.testing.assert_allclose(R, r, rtol=1e-12)
         with self.assertRaises(iris.Error):
-            iris.film.gulbrandsen_ior(1.5, 0.5)
+            iris.thin_film.gulbrandsen_ior(1.5, 0.5)
 
 
 if __name__ == "__main__":

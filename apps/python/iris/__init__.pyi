@@ -1,4 +1,4 @@
-from . import color as color, film as film, materials as materials
+from . import color as color, film as film, materials as materials, thin_film as thin_film
 from ._iris import Error as Error, Scene as Scene
 from .images import read as read, write as write
 from .materials import Material as Material

@@ -20,7 +20,7 @@
 #include "materials/material.h"
 #include "spectral/belcour_barla.h"
 #include "spectral/conductor_presets.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 #include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/wavelengths.h"
 #include "spectral/xyz.h"
@@ -47,11 +47,11 @@ void film(std::istringstream& in) {
         const double re = next<double>(in), im = next<double>(in);
         L = {complexd(re, im), next<double>(in)};
     }
-    FilmStackResult r;
-    if (mode == "transfer_matrix") r = filmStackRT(l, c, n0, layers, sub);
-    else if (mode == "airy") r = singleFilmRT(FilmPhaseMode::Exact, K, l, c, n0, layers.at(0), sub);
-    else if (mode == "truncated") r = singleFilmRT(FilmPhaseMode::Truncated, K, l, c, n0, layers.at(0), sub);
-    else if (mode == "incoherent") r = singleFilmRT(FilmPhaseMode::Incoherent, K, l, c, n0, layers.at(0), sub);
+    ThinFilmStackResult r;
+    if (mode == "transfer_matrix") r = thinFilmStackRT(l, c, n0, layers, sub);
+    else if (mode == "airy") r = singleFilmRT(ThinFilmPhaseMode::Exact, K, l, c, n0, layers.at(0), sub);
+    else if (mode == "truncated") r = singleFilmRT(ThinFilmPhaseMode::Truncated, K, l, c, n0, layers.at(0), sub);
+    else if (mode == "incoherent") r = singleFilmRT(ThinFilmPhaseMode::Incoherent, K, l, c, n0, layers.at(0), sub);
     else fail("unknown mode ", mode);
     std::printf("%a %a %a %a\n", r.Rs, r.Rp, r.Ts, r.Tp);
 }

@@ -1,8 +1,8 @@
-#include "spectral/film_airy_batch.h"
+#include "spectral/thin_film_airy_batch.h"
 
 #include <cmath>
 
-#include "spectral/film_airy.h"
+#include "spectral/thin_film_airy.h"
 #include "spectral/lane_dispatch.h"
 
 namespace iris {

@@ -1,4 +1,4 @@
-// Thin-film stack optics (spectral/film_stack.h) checked against physics: bare Fresnel limits,
+// Thin-film stack optics (spectral/thin_film_stack.h) checked against physics: bare Fresnel limits,
 // absentee and quarter-wave layers, energy conservation, TMM == Airy, incoherent limits,
 // truncation convergence and robustness over a dense parameter grid.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 namespace iris {
 namespace {
@@ -39,9 +39,9 @@ TEST(FilmStack, ZeroThicknessGivesBareFresnel) {
         const double lambda = 360 + 470 * u(rng);
         double Rs, Rp;
         bareFresnel(cosI, n0, sub, Rs, Rp);
-        const FilmStackResult tmm = filmStackRT(lambda, cosI, n0, std::span(&film, 1), sub);
-        const FilmStackResult airy = airySingleFilm(lambda, cosI, n0, film, sub);
-        const FilmStackResult bare = fresnelInterfaceRT(cosI, n0, sub);
+        const ThinFilmStackResult tmm = thinFilmStackRT(lambda, cosI, n0, std::span(&film, 1), sub);
+        const ThinFilmStackResult airy = airySingleFilm(lambda, cosI, n0, film, sub);
+        const ThinFilmStackResult bare = fresnelInterfaceRT(cosI, n0, sub);
         const FresnelAmplitudes amp = fresnelAmplitudes(cosI, n0, sub);
         EXPECT_NEAR(tmm.Rs, Rs, 1e-12);
         EXPECT_NEAR(tmm.Rp, Rp, 1e-12);
@@ -74,9 +74,9 @@ TEST(FilmStack, HalfWaveLayerIsAbsentee) {
         for (complexd s : {sub, metal}) {
             // Normal incidence: d = λ/(2 n1).
             const Layer film{complexd(n1, 0), lambda / (2 * n1)};
-            const FilmStackResult bare = fresnelInterfaceRT(1.0, n0, s);
-            const FilmStackResult tmm = filmStackRT(lambda, 1.0, n0, std::span(&film, 1), s);
-            const FilmStackResult airy = airySingleFilm(lambda, 1.0, n0, film, s);
+            const ThinFilmStackResult bare = fresnelInterfaceRT(1.0, n0, s);
+            const ThinFilmStackResult tmm = thinFilmStackRT(lambda, 1.0, n0, std::span(&film, 1), s);
+            const ThinFilmStackResult airy = airySingleFilm(lambda, 1.0, n0, film, s);
             EXPECT_NEAR(tmm.R(), bare.R(), 1e-12);
             EXPECT_NEAR(airy.R(), bare.R(), 1e-12);
             EXPECT_NEAR(tmm.T(), bare.T(), 1e-12);
@@ -84,14 +84,14 @@ TEST(FilmStack, HalfWaveLayerIsAbsentee) {
             const double c = std::sqrt(0.5), sinv = n0 * std::sqrt(0.5);
             const double q1 = std::sqrt(n1 * n1 - sinv * sinv);
             const Layer film45{complexd(n1, 0), lambda / (2 * q1)};
-            const FilmStackResult bare45 = fresnelInterfaceRT(c, n0, s);
-            const FilmStackResult tmm45 = filmStackRT(lambda, c, n0, std::span(&film45, 1), s);
+            const ThinFilmStackResult bare45 = fresnelInterfaceRT(c, n0, s);
+            const ThinFilmStackResult tmm45 = thinFilmStackRT(lambda, c, n0, std::span(&film45, 1), s);
             EXPECT_NEAR(tmm45.Rs, bare45.Rs, 1e-12);
             EXPECT_NEAR(tmm45.Rp, bare45.Rp, 1e-12);
             EXPECT_NEAR(tmm45.Ts, bare45.Ts, 1e-12);
             EXPECT_NEAR(tmm45.Tp, bare45.Tp, 1e-12);
             // Off-design (at another wavelength) the layer is not absent.
-            const FilmStackResult off = filmStackRT(lambda * 1.3, c, n0, std::span(&film45, 1), s);
+            const ThinFilmStackResult off = thinFilmStackRT(lambda * 1.3, c, n0, std::span(&film45, 1), s);
             EXPECT_GT(std::abs(off.R() - fresnelInterfaceRT(c, n0, s).R()), 1e-3);
         }
     }
@@ -104,7 +104,7 @@ TEST(FilmStack, QuarterWaveCoating) {
             const double lambda = 550, n0 = 1.0;
             const Layer film{complexd(n1, 0), lambda / (4 * n1)};
             const double expected = std::pow((n0 * ns - n1 * n1) / (n0 * ns + n1 * n1), 2);
-            EXPECT_NEAR(filmStackRT(lambda, 1.0, n0, std::span(&film, 1), complexd(ns, 0)).R(), expected, 1e-12);
+            EXPECT_NEAR(thinFilmStackRT(lambda, 1.0, n0, std::span(&film, 1), complexd(ns, 0)).R(), expected, 1e-12);
             EXPECT_NEAR(airySingleFilm(lambda, 1.0, n0, film, complexd(ns, 0)).R(), expected, 1e-12);
         }
     }
@@ -123,13 +123,13 @@ TEST(FilmStack, LosslessStacksConserveEnergyAtAllAngles) {
         const double cosI = i % 10 == 0 ? 0.0 : u(rng);
         const double lambda = 360 + 470 * u(rng);
         if (n0 * std::sqrt(1 - cosI * cosI) > sub.real()) ++beyondCritical;
-        const FilmStackResult r = filmStackRT(lambda, cosI, n0, layers, sub);
+        const ThinFilmStackResult r = thinFilmStackRT(lambda, cosI, n0, layers, sub);
         EXPECT_NEAR(r.Rs + r.Ts, 1.0, 1e-10) << i;
         EXPECT_NEAR(r.Rp + r.Tp, 1.0, 1e-10) << i;
-        const FilmStackResult a = airySingleFilm(lambda, cosI, n0, layers[0], sub);
+        const ThinFilmStackResult a = airySingleFilm(lambda, cosI, n0, layers[0], sub);
         EXPECT_NEAR(a.Rs + a.Ts, 1.0, 1e-10) << i;
         EXPECT_NEAR(a.Rp + a.Tp, 1.0, 1e-10) << i;
-        const FilmStackResult inc = incoherentSingleFilm(lambda, cosI, n0, layers[0], sub);
+        const ThinFilmStackResult inc = incoherentSingleFilm(lambda, cosI, n0, layers[0], sub);
         EXPECT_NEAR(inc.Rs + inc.Ts, 1.0, 1e-10) << i;
         EXPECT_NEAR(inc.Rp + inc.Tp, 1.0, 1e-10) << i;
     }
@@ -144,8 +144,8 @@ TEST(FilmStack, FrustratedTotalInternalReflection) {
     double prevT = 2;
     for (double d : {0.0, 20.0, 100.0, 300.0, 1000.0, 1e4, 1e5}) {
         const Layer gap{complexd(1.0, 0), d};
-        const FilmStackResult tmm = filmStackRT(500, c, n0, std::span(&gap, 1), sub);
-        const FilmStackResult airy = airySingleFilm(500, c, n0, gap, sub);
+        const ThinFilmStackResult tmm = thinFilmStackRT(500, c, n0, std::span(&gap, 1), sub);
+        const ThinFilmStackResult airy = airySingleFilm(500, c, n0, gap, sub);
         EXPECT_TRUE(std::isfinite(tmm.R()) && std::isfinite(tmm.T()));
         EXPECT_NEAR(tmm.R() + tmm.T(), 1.0, 1e-12) << d;
         EXPECT_NEAR(airy.R(), tmm.R(), 1e-12) << d;
@@ -155,7 +155,7 @@ TEST(FilmStack, FrustratedTotalInternalReflection) {
     }
     EXPECT_NEAR(prevT, 0.0, 1e-300);
     const Layer zero{complexd(1.0, 0), 0.0};
-    EXPECT_NEAR(filmStackRT(500, c, n0, std::span(&zero, 1), sub).T(), 1.0, 1e-12);
+    EXPECT_NEAR(thinFilmStackRT(500, c, n0, std::span(&zero, 1), sub).T(), 1.0, 1e-12);
 }
 
 TEST(FilmStack, ThickAbsorbingLayerActsAsSemiInfiniteMedium) {
@@ -163,18 +163,18 @@ TEST(FilmStack, ThickAbsorbingLayerActsAsSemiInfiniteMedium) {
     const complexd metal(1.3, 10.0);
     for (double c : {1.0, 0.6, 0.05}) {
         const Layer thick{metal, 1e5};
-        const FilmStackResult tmm = filmStackRT(400, c, 1.0, std::span(&thick, 1), complexd(1.5, 0));
-        const FilmStackResult bare = fresnelInterfaceRT(c, 1.0, metal);
+        const ThinFilmStackResult tmm = thinFilmStackRT(400, c, 1.0, std::span(&thick, 1), complexd(1.5, 0));
+        const ThinFilmStackResult bare = fresnelInterfaceRT(c, 1.0, metal);
         EXPECT_NEAR(tmm.Rs, bare.Rs, 1e-13);
         EXPECT_NEAR(tmm.Rp, bare.Rp, 1e-13);
         EXPECT_EQ(tmm.T(), 0.0);
-        const FilmStackResult airy = airySingleFilm(400, c, 1.0, thick, complexd(1.5, 0));
+        const ThinFilmStackResult airy = airySingleFilm(400, c, 1.0, thick, complexd(1.5, 0));
         EXPECT_NEAR(airy.R(), bare.R(), 1e-13);
     }
     // A thin metal film transmits a little; Beer-Lambert-like decay with thickness.
     const Layer t10{metal, 10}, t20{metal, 20};
-    const double T10 = filmStackRT(500, 1, 1, std::span(&t10, 1), complexd(1.5, 0)).T();
-    const double T20 = filmStackRT(500, 1, 1, std::span(&t20, 1), complexd(1.5, 0)).T();
+    const double T10 = thinFilmStackRT(500, 1, 1, std::span(&t10, 1), complexd(1.5, 0)).T();
+    const double T20 = thinFilmStackRT(500, 1, 1, std::span(&t20, 1), complexd(1.5, 0)).T();
     EXPECT_GT(T10, 0.0);
     EXPECT_NEAR(T20 / T10, std::exp(-4 * kPiD * 10.0 * 10 / 500), 0.2 * T20 / T10);
 }
@@ -187,8 +187,8 @@ TEST(FilmStack, TransferMatrixEqualsAiryForOneLayer) {
         const Layer film{complexd(1.0 + 3 * u(rng), u(rng) < 0.5 ? 0.0 : 2 * u(rng) * u(rng)), 3000 * u(rng) * u(rng)};
         const complexd sub(0.1 + 3 * u(rng), u(rng) < 0.5 ? 0.0 : 6 * u(rng));
         const double cosI = u(rng), lambda = 360 + 470 * u(rng);
-        const FilmStackResult t = filmStackRT(lambda, cosI, n0, std::span(&film, 1), sub);
-        const FilmStackResult a = airySingleFilm(lambda, cosI, n0, film, sub);
+        const ThinFilmStackResult t = thinFilmStackRT(lambda, cosI, n0, std::span(&film, 1), sub);
+        const ThinFilmStackResult a = airySingleFilm(lambda, cosI, n0, film, sub);
         ASSERT_NEAR(t.Rs, a.Rs, 1e-10) << i;
         ASSERT_NEAR(t.Rp, a.Rp, 1e-10) << i;
         ASSERT_NEAR(t.Ts, a.Ts, 1e-10) << i;
@@ -208,7 +208,7 @@ TEST(FilmStack, AiryMatchesRealFormulaForThickFilmsInLongDouble) {
             const long double R = (r01 * r01 + r12 * r12 + 2 * r01 * r12 * c) / (1 + r01 * r01 * r12 * r12 + 2 * r01 * r12 * c);
             const Layer film{complexd(1.45, 0), d};
             EXPECT_NEAR(airySingleFilm(lambda, 1.0, 1.0, film, complexd(1.9, 0)).R(), (double)R, 1e-11);
-            EXPECT_NEAR(filmStackRT(lambda, 1.0, 1.0, std::span(&film, 1), complexd(1.9, 0)).R(), (double)R, 1e-11);
+            EXPECT_NEAR(thinFilmStackRT(lambda, 1.0, 1.0, std::span(&film, 1), complexd(1.9, 0)).R(), (double)R, 1e-11);
         }
     }
 }
@@ -224,8 +224,8 @@ TEST(FilmStack, ThickFilmWavelengthAverageTendsToIncoherentSum) {
                 double sumR = 0, sumT = 0, sumInc = 0, sumIncT = 0;
                 for (int i = 0; i < n; ++i) {
                     const double lambda = 500 + 100 * (i + 0.5) / n;  // ~100 fringes
-                    const FilmStackResult a = airySingleFilm(lambda, cosI, 1.0, film, s);
-                    const FilmStackResult inc = incoherentSingleFilm(lambda, cosI, 1.0, film, s);
+                    const ThinFilmStackResult a = airySingleFilm(lambda, cosI, 1.0, film, s);
+                    const ThinFilmStackResult inc = incoherentSingleFilm(lambda, cosI, 1.0, film, s);
                     sumR += a.R();
                     sumT += a.T();
                     sumInc += inc.R();
@@ -251,13 +251,13 @@ TEST(FilmStack, TruncatedSumConvergesToClosedForm) {
         const Layer film{complexd(1.2 + 2 * u(rng), u(rng) < 0.7 ? 0.0 : 0.3 * u(rng)), 1500 * u(rng)};
         const complexd sub(0.2 + 2.5 * u(rng), u(rng) < 0.5 ? 0.0 : 5 * u(rng));
         const double cosI = 0.05 + 0.95 * u(rng), lambda = 360 + 470 * u(rng);
-        const FilmStackResult ex = airySingleFilm(lambda, cosI, n0, film, sub);
+        const ThinFilmStackResult ex = airySingleFilm(lambda, cosI, n0, film, sub);
         for (int K = 0; K <= kMaxK; ++K) {
-            const FilmStackResult tr = truncatedSingleFilm(lambda, cosI, n0, film, sub, K);
+            const ThinFilmStackResult tr = truncatedSingleFilm(lambda, cosI, n0, film, sub, K);
             err[K] += std::abs(tr.R() - ex.R()) + std::abs(tr.T() - ex.T());
         }
         // K → ∞: the closed form.
-        const FilmStackResult big = truncatedSingleFilm(lambda, cosI, n0, film, sub, 2000);
+        const ThinFilmStackResult big = truncatedSingleFilm(lambda, cosI, n0, film, sub, 2000);
         EXPECT_NEAR(big.R(), ex.R(), 1e-9);
         EXPECT_NEAR(big.T(), ex.T(), 1e-9);
     }
@@ -292,12 +292,12 @@ TEST(FilmStack, DenseGridIsFiniteAndBounded) {
                                 const double c = std::cos(a * kPiD / 180);
                                 const Layer film{complexd(eta, k), d};
                                 const Layer stack[3] = {film, {complexd(1.38, 0), 100}, film};
-                                const FilmStackResult rs[4] = {
-                                    filmStackRT(lambda, c, n0, stack, sub), airySingleFilm(lambda, c, n0, film, sub),
+                                const ThinFilmStackResult rs[4] = {
+                                    thinFilmStackRT(lambda, c, n0, stack, sub), airySingleFilm(lambda, c, n0, film, sub),
                                     incoherentSingleFilm(lambda, c, n0, film, sub),
                                     truncatedSingleFilm(lambda, c, n0, film, sub, 3)};
                                 for (int m = 0; m < 4; ++m) {
-                                    const FilmStackResult& r = rs[m];
+                                    const ThinFilmStackResult& r = rs[m];
                                     for (double v : {r.Rs, r.Rp, r.Ts, r.Tp}) {
                                         ASSERT_TRUE(std::isfinite(v)) << a << " " << eta << " " << k << " " << d;
                                         ASSERT_GE(v, 0.0);
@@ -327,19 +327,19 @@ TEST(FilmStack, FiftyLayerBraggMirror) {
         }
         const double y = ns * std::pow(nH / nL, 2 * N);
         const double expected = std::pow((1 - y) / (1 + y), 2);
-        const FilmStackResult r = filmStackRT(lambda, 1.0, 1.0, layers, complexd(ns, 0));
+        const ThinFilmStackResult r = thinFilmStackRT(lambda, 1.0, 1.0, layers, complexd(ns, 0));
         EXPECT_NEAR(r.R(), expected, 1e-10) << N;
         EXPECT_NEAR(r.R() + r.T(), 1.0, 1e-10);
         // Oblique, off-design and absorbing variants stay finite and bounded.
         for (auto& l : layers) l.ior += complexd(0, 0.05);
-        const FilmStackResult ra = filmStackRT(455, 0.3, 1.0, layers, complexd(0.2, 3.0));
+        const ThinFilmStackResult ra = thinFilmStackRT(455, 0.3, 1.0, layers, complexd(0.2, 3.0));
         EXPECT_TRUE(std::isfinite(ra.R()) && std::isfinite(ra.T()));
         EXPECT_GE(ra.A(), -1e-12);
         EXPECT_LE(ra.R() + ra.T(), 1.0 + 1e-12);
     }
     // 50 thick absorbing layers: T underflows to 0 without NaN.
     std::vector<Layer> thick(50, Layer{complexd(2.0, 0.5), 2e4});
-    const FilmStackResult r = filmStackRT(500, 0.7, 1.0, thick, complexd(1.5, 0));
+    const ThinFilmStackResult r = thinFilmStackRT(500, 0.7, 1.0, thick, complexd(1.5, 0));
     EXPECT_TRUE(std::isfinite(r.R()));
     EXPECT_EQ(r.T(), 0.0);
     EXPECT_NEAR(r.R(), fresnelInterfaceRT(0.7, 1.0, complexd(2.0, 0.5)).R(), 1e-12);

@@ -1,18 +1,18 @@
-// The batched Airy kernel (spectral/film_airy_batch.h), which FilmCoating evaluates all wavelengths
+// The batched Airy kernel (spectral/thin_film_airy_batch.h), which ThinFilmCoating evaluates all wavelengths
 // of a path through, against the scalar kernel airySingleFilmFastAt lane by lane: the same decline
 // decisions everywhere, bit-identical R and T where both square roots are real (lossless film and
 // substrate: the same operations in the same order), and agreement to rounding where a radicand is
 // complex (the batch takes the principal root by Kahan's formula, the scalar one glibc's csqrt).
-// Then FilmCoating's batched reflectance / transmittance against its per-entry stackRT.
+// Then ThinFilmCoating's batched reflectance / transmittance against its per-entry stackRT.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "core/arena.h"
-#include "spectral/film_airy.h"
-#include "spectral/film_airy_batch.h"
-#include "materials/film_coating.h"
+#include "spectral/thin_film_airy.h"
+#include "spectral/thin_film_airy_batch.h"
+#include "materials/thin_film_coating.h"
 #include "spectral/lane_dispatch.h"
 #include "tests/support/bsdf_test_util.h"
 
@@ -80,7 +80,7 @@ TEST(FilmAiryBatch, EveryLaneEqualsTheScalarKernel) {
         const uint32_t mask = b.run(n);
         if (n < 32) ASSERT_EQ(mask >> n, 0u) << "lanes beyond n reported";
         for (int k = 0; k < n; ++k) {
-            FilmStackResult s;
+            ThinFilmStackResult s;
             const bool ok = airySingleFilmFastAt(lanes[k].angle, lanes[k].film, lanes[k].substrate, s);
             ASSERT_EQ(ok, !(mask >> k & 1)) << "trial " << trial << " lane " << k;
             if (!ok) {
@@ -142,7 +142,7 @@ TEST(FilmAiryBatch, DeclinedLanesAreReported) {
     lanes[5].angle.s2 = n1 * n1;  // exactly
     lanes[5].film = airyFilmConstants(500.0, 0.0, squaredIndex(complexd(n1, 0.0)));
     lanes[5].substrate = squaredIndex(complexd(n1, 0.0));
-    FilmStackResult s;
+    ThinFilmStackResult s;
     ASSERT_FALSE(airySingleFilmFastAt(lanes[5].angle, lanes[5].film, lanes[5].substrate, s));
     for (int k = 0; k < 8; ++k) b.set(k, lanes[k]);
     uint32_t expected = 0;
@@ -151,10 +151,10 @@ TEST(FilmAiryBatch, DeclinedLanesAreReported) {
     EXPECT_EQ(b.run(7), expected | (1u << 5));
 }
 
-// FilmCoating's reflectance / reflectanceTransmittance / fromBelowRT (batched) against stackRT and
+// ThinFilmCoating's reflectance / reflectanceTransmittance / fromBelowRT (batched) against stackRT and
 // stackRTFromBelow at each entry (the scalar kernel): gold (complex substrate) and dielectric
 // substrates, absorbing and lossless films, every count of wavelengths.
-TEST(FilmAiryBatch, FilmCoatingBatchedEqualsPerEntry) {
+TEST(FilmAiryBatch, ThinFilmCoatingBatchedEqualsPerEntry) {
     struct Case {
         const char* what;
         std::shared_ptr<Properties> props;
@@ -173,25 +173,25 @@ TEST(FilmAiryBatch, FilmCoatingBatchedEqualsPerEntry) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> U(0.0f, 1.0f);
     for (const Case& c : cases) {
-        const FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(*c.props, 1.5f, 0.0f);
+        const ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(*c.props, 1.5f, 0.0f);
         for (int n = 1; n <= kMaxWavelengths; ++n) {
             const SampledWavelengths wl = SampledWavelengths::sampleVisible(U(rng), n);
             Arena arena;
-            const FilmCoating coat(spec, TextureQuery{}, wl, arena);
+            const ThinFilmCoating coat(spec, TextureQuery{}, wl, arena);
             for (float cosTheta : {1.0f, 0.73f, 0.2f, 1e-3f, 0.0f, U(rng)}) {
                 const SampledSpectrum R = coat.reflectance(cosTheta);
                 SampledSpectrum R2, T2, Rb, Tb;
                 coat.reflectanceTransmittance(cosTheta, R2, T2);
                 if (c.transmission) coat.fromBelowRT(cosTheta, Rb, Tb);
                 for (int k = 0; k < n; ++k) {
-                    const FilmStackResult a = coat.stackRT(k, cosTheta);
+                    const ThinFilmStackResult a = coat.stackRT(k, cosTheta);
                     // Float outputs: the scalar and batched double results agree to 1e-12, far
                     // below a float ulp, so they round to the same or an adjacent float.
                     EXPECT_NEAR(R[k], float(a.R()), 1e-7f) << c.what << " n " << n << " k " << k;
                     EXPECT_EQ(R2[k], R[k]);
                     EXPECT_NEAR(T2[k], float(a.T()), 1e-7f) << c.what << " n " << n << " k " << k;
                     if (c.transmission) {
-                        const FilmStackResult b = coat.stackRTFromBelow(k, cosTheta);
+                        const ThinFilmStackResult b = coat.stackRTFromBelow(k, cosTheta);
                         EXPECT_NEAR(Rb[k], float(b.R()), 1e-7f) << c.what << " below, n " << n << " k " << k;
                         EXPECT_NEAR(Tb[k], float(b.T()), 1e-7f) << c.what << " below, n " << n << " k " << k;
                     }

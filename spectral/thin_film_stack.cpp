@@ -1,8 +1,8 @@
 // Thin-film stack optics: interface coefficients, Airy sums and the transfer-matrix method.
 // Derivations and the numerics choices for ill-conditioned cases are in docs/thin_film.md.
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
-#include "spectral/film_airy.h"
+#include "spectral/thin_film_airy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,16 +129,16 @@ FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT
     return a;
 }
 
-FilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT) {
-    return filmStackRT(550.0, cosThetaI, iorI, {}, iorT);
+ThinFilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT) {
+    return thinFilmStackRT(550.0, cosThetaI, iorI, {}, iorT);
 }
 
-FilmStackResult filmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult thinFilmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
                             std::span<const Layer> layers, complexd substrateIor) {
     const double c = std::clamp(cosThetaIncident, 0.0, 1.0);
     const double s = incidentIor * std::sqrt(std::max(0.0, 1.0 - c * c));
     const double q0 = incidentIor * c;
-    FilmStackResult res;
+    ThinFilmStackResult res;
     const double y0[2] = {q0, q0 / (incidentIor * incidentIor)};
     AmpRT amp[2];
     transferMatrix(lambdaNm, y0, s, layers, substrateIor, amp);
@@ -193,8 +193,8 @@ double transmittance(const FilmInterfaces& f, complexd sum) {
     return std::clamp(f.y0 * f.y2.real() * std::norm(f.tScaled * f.halfPhase * sum), 0.0, 1.0);
 }
 
-FilmStackResult combine(const AmpRT& s, const AmpRT& p, bool clampR) {
-    FilmStackResult r;
+ThinFilmStackResult combine(const AmpRT& s, const AmpRT& p, bool clampR) {
+    ThinFilmStackResult r;
     r.Rs = clampR ? std::min(1.0, std::norm(s.r)) : std::norm(s.r);
     r.Rp = clampR ? std::min(1.0, std::norm(p.r)) : std::norm(p.r);
     r.Ts = s.T;
@@ -217,21 +217,21 @@ AiryFilmConstants airyFilmConstants(double lambdaNm, const Layer& film) {
 }
 
 bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
-                        const SquaredIndex& substrate, FilmStackResult& out) {
+                        const SquaredIndex& substrate, ThinFilmStackResult& out) {
     return airySingleFilmFastAt(airyAngle(cosThetaIncident, incidentIor), film, substrate, out);
 }
 
-FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
+ThinFilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor) {
-    FilmStackResult r;
+    ThinFilmStackResult r;
     if (airySingleFilmFast(cosThetaIncident, incidentIor, airyFilmConstants(lambdaNm, film), squaredIndex(substrateIor), r))
         return r;
     // Degenerate for the closed form (q1 = 0 exactly): the transfer matrix, which is well
     // conditioned there (halfExpm1OverQ), gives the same quantity.
-    return filmStackRT(lambdaNm, cosThetaIncident, incidentIor, std::span<const Layer>(&film, 1), substrateIor);
+    return thinFilmStackRT(lambdaNm, cosThetaIncident, incidentIor, std::span<const Layer>(&film, 1), substrateIor);
 }
 
-FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
                                         const Layer& film, complexd substrateIor) {
     AmpRT out[2];
     for (int k = 0; k < 2; ++k) {
@@ -245,7 +245,7 @@ FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident
     return combine(out[0], out[1], true);
 }
 
-FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
                                     const Layer& film, complexd substrateIor, int K) {
     K = std::max(K, 0);
     AmpRT out[2];
@@ -266,7 +266,7 @@ FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, do
     return combine(out[0], out[1], false);
 }
 
-FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
                                      const Layer& film, complexd substrateIor) {
     double R[2], T[2];
     for (int k = 0; k < 2; ++k) {
@@ -286,16 +286,16 @@ FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, d
         R[k] = std::min(1.0, R01 + T01 * T01 * R12 * a * a / den);
         T[k] = std::clamp(T01 * T12 * a / den, 0.0, 1.0 - R[k]);
     }
-    return FilmStackResult{R[0], R[1], T[0], T[1]};
+    return ThinFilmStackResult{R[0], R[1], T[0], T[1]};
 }
 
-FilmStackResult singleFilmRT(FilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult singleFilmRT(ThinFilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
                              const Layer& film, complexd substrateIor) {
     switch (mode) {
-        case FilmPhaseMode::Exact: return airySingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
-        case FilmPhaseMode::Truncated:
+        case ThinFilmPhaseMode::Exact: return airySingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
+        case ThinFilmPhaseMode::Truncated:
             return truncatedSingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor, K);
-        case FilmPhaseMode::Incoherent:
+        case ThinFilmPhaseMode::Incoherent:
             return incoherentSingleFilm(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor);
     }
     return {};

@@ -1,5 +1,5 @@
-// The fast exact Airy path (spectral/film_stack.h airySingleFilmFast, used by airySingleFilm and by
-// FilmCoating with hoisted per-wavelength constants) against the original complex formulation
+// The fast exact Airy path (spectral/thin_film_stack.h airySingleFilmFast, used by airySingleFilm and by
+// ThinFilmCoating with hoisted per-wavelength constants) against the original complex formulation
 // (airySingleFilmReference) over many angles — including grazing incidence and cosines within
 // 1e-3 … 1e-12 of every critical angle —, thicknesses, film and substrate indices and incident media.
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/arena.h"
-#include "spectral/film_airy.h"
-#include "materials/film_coating.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_airy.h"
+#include "materials/thin_film_coating.h"
+#include "spectral/thin_film_stack.h"
 #include "spectral/ior_params.h"
 #include "tests/support/bsdf_test_util.h"
 
@@ -41,16 +41,16 @@ std::vector<double> testCosines(double n0, std::initializer_list<double> others)
 struct Diff {
     double maxR = 0, maxT = 0;
     long fast = 0, total = 0;
-    void add(const FilmStackResult& a, const FilmStackResult& b) {
+    void add(const ThinFilmStackResult& a, const ThinFilmStackResult& b) {
         maxR = std::max({maxR, std::abs(a.Rs - b.Rs), std::abs(a.Rp - b.Rp)});
         maxT = std::max({maxT, std::abs(a.Ts - b.Ts), std::abs(a.Tp - b.Tp)});
     }
 };
 
-double maxAbsDiff(const FilmStackResult& a, const FilmStackResult& b) {
+double maxAbsDiff(const ThinFilmStackResult& a, const ThinFilmStackResult& b) {
     return std::max({std::abs(a.Rs - b.Rs), std::abs(a.Rp - b.Rp), std::abs(a.Ts - b.Ts), std::abs(a.Tp - b.Tp)});
 }
-bool allFinite(const FilmStackResult& r) {
+bool allFinite(const ThinFilmStackResult& r) {
     return std::isfinite(r.Rs) && std::isfinite(r.Rp) && std::isfinite(r.Ts) && std::isfinite(r.Tp);
 }
 
@@ -59,7 +59,7 @@ bool allFinite(const FilmStackResult& r) {
 // film's critical angle (q1 → 0: its r = (r01 + r12 E)/(1 + r01 r12 E) is 0/0 there, errors up to
 // ~1e-8 against the TMM) and at grazing incidence, so it is held to 1e-11 plus its own distance
 // from the TMM.
-TEST(FilmFastPath, AiryFastEqualsGeneralPathOnDenseGrid) {
+TEST(ThinFilmFastPath, AiryFastEqualsGeneralPathOnDenseGrid) {
     const double lambdas[] = {360.0, 455.0, 550.0, 671.0, 830.0};
     const double thick[] = {0.0, 1e-3, 1.0, 57.0, 250.0, 320.0, 1000.0, 1e4, 1e5};
     const double filmN[] = {1.0001, 1.33, 1.45, 1.9, 2.3, 4.0};
@@ -77,11 +77,11 @@ TEST(FilmFastPath, AiryFastEqualsGeneralPathOnDenseGrid) {
                         for (double t : thick) {
                             for (double l : lambdas) {
                                 const Layer film{complexd(n1, k1), t};
-                                FilmStackResult f;
+                                ThinFilmStackResult f;
                                 const bool ok = airySingleFilmFast(c, n0, airyFilmConstants(l, film), squaredIndex(sub), f);
-                                const FilmStackResult pub = airySingleFilm(l, c, n0, film, sub);
-                                const FilmStackResult tmm = filmStackRT(l, c, n0, std::span(&film, 1), sub);
-                                const FilmStackResult ref = airySingleFilmReference(l, c, n0, film, sub);
+                                const ThinFilmStackResult pub = airySingleFilm(l, c, n0, film, sub);
+                                const ThinFilmStackResult tmm = thinFilmStackRT(l, c, n0, std::span(&film, 1), sub);
+                                const ThinFilmStackResult ref = airySingleFilmReference(l, c, n0, film, sub);
                                 ++total;
                                 ASSERT_TRUE(allFinite(pub)) << "n0 " << n0 << " film " << n1 << "+" << k1 << "i d " << t
                                                             << " sub " << sub << " cos " << c << " λ " << l;
@@ -128,7 +128,7 @@ TEST(FilmFastPath, AiryFastEqualsGeneralPathOnDenseGrid) {
     EXPECT_GE(fast, total - total / 100);
 }
 
-TEST(FilmFastPath, RandomCasesAgreeTightly) {
+TEST(ThinFilmFastPath, RandomCasesAgreeTightly) {
     std::mt19937 rng(20261201);
     std::uniform_real_distribution<double> u(0, 1);
     Diff d;
@@ -140,12 +140,12 @@ TEST(FilmFastPath, RandomCasesAgreeTightly) {
         const complexd sub = u(rng) < 0.5 ? complexd(0.1 + 3 * u(rng), 0.0) : complexd(0.1 + 3 * u(rng), 8 * u(rng));
         const double c = u(rng) < 0.05 ? 0.0 : u(rng);
         const double l = 360 + 470 * u(rng);
-        FilmStackResult fast;
+        ThinFilmStackResult fast;
         ++d.total;
         if (!airySingleFilmFast(c, n0, airyFilmConstants(l, film), squaredIndex(sub), fast)) continue;
         ++d.fast;
         d.add(fast, airySingleFilmReference(l, c, n0, film, sub));
-        const FilmStackResult tmm = filmStackRT(l, c, n0, std::span(&film, 1), sub);
+        const ThinFilmStackResult tmm = thinFilmStackRT(l, c, n0, std::span(&film, 1), sub);
         maxTmm = std::max(maxTmm, maxAbsDiff(fast, tmm));
     }
     std::printf("FILM-FAST random: %ld cases, fast %ld, vs reference max |dR| %.3g, max |dT| %.3g; vs TMM %.3g\n",
@@ -156,37 +156,37 @@ TEST(FilmFastPath, RandomCasesAgreeTightly) {
     EXPECT_LE(d.maxT, 1e-12);
 }
 
-TEST(FilmFastPath, DegenerateDenominatorFallsBackToTransferMatrix) {
+TEST(ThinFilmFastPath, DegenerateDenominatorFallsBackToTransferMatrix) {
     // q1 = 0 exactly: grazing incidence (s = n0 = 1) onto a film of index 1 — den = 0 in the closed
     // form; the fast path declines and airySingleFilm returns the transfer matrix.
     const Layer film{complexd(1.0, 0.0), 300.0};
-    FilmStackResult fast;
+    ThinFilmStackResult fast;
     EXPECT_FALSE(airySingleFilmFast(0.0, 1.0, airyFilmConstants(550.0, film), squaredIndex(complexd(1.5, 0.0)), fast));
-    const FilmStackResult pub = airySingleFilm(550.0, 0.0, 1.0, film, complexd(1.5, 0.0));
-    const FilmStackResult tmm = filmStackRT(550.0, 0.0, 1.0, std::span(&film, 1), complexd(1.5, 0.0));
+    const ThinFilmStackResult pub = airySingleFilm(550.0, 0.0, 1.0, film, complexd(1.5, 0.0));
+    const ThinFilmStackResult tmm = thinFilmStackRT(550.0, 0.0, 1.0, std::span(&film, 1), complexd(1.5, 0.0));
     EXPECT_EQ(maxAbsDiff(pub, tmm), 0.0);
     EXPECT_TRUE(allFinite(pub));
 }
 
-/// FilmCoating (hoisted constants per path) against the reference evaluated from scratch, from
+/// ThinFilmCoating (hoisted constants per path) against the reference evaluated from scratch, from
 /// both sides, at N = 32 wavelengths and in RGB mode.
-TEST(FilmFastPath, FilmCoatingUsesHoistedConstantsExactly) {
+TEST(ThinFilmFastPath, ThinFilmCoatingUsesHoistedConstantsExactly) {
     for (float sub : {1.0f, 1.52f}) {
         for (float film : {1.33f, 2.3f}) {
             auto p = test::makeProps("thinfilm", {{"film_ior", film}, {"thickness", 380.0f}, {"substrate_eta", sub}});
-            FilmCoatingSpec spec = FilmCoatingSpec::fromProperties(*p, 1.5f, 0.0f);
+            ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(*p, 1.5f, 0.0f);
             Arena arena;
             float lambdas[kMaxWavelengths];
             for (int k = 0; k < kMaxWavelengths; ++k) lambdas[k] = 360.0f + 470.0f * (k + 0.37f) / kMaxWavelengths;
-            const FilmCoating coat(spec, TextureQuery{}, lambdas, kMaxWavelengths, arena);
+            const ThinFilmCoating coat(spec, TextureQuery{}, lambdas, kMaxWavelengths, arena);
             double maxDiff = 0;
             for (double c : testCosines(1.0, {})) {
                 for (int k = 0; k < kMaxWavelengths; ++k) {
                     const Layer layer{complexd(film, 0.0), 380.0};
-                    const FilmStackResult a = coat.stackRT(k, c);
-                    const FilmStackResult r = airySingleFilmReference(lambdas[k], c, 1.0, layer, coat.substrateIor(k));
-                    const FilmStackResult b = coat.stackRTFromBelow(k, c);
-                    const FilmStackResult rb = airySingleFilmReference(lambdas[k], c, coat.substrateIor(k).real(), layer,
+                    const ThinFilmStackResult a = coat.stackRT(k, c);
+                    const ThinFilmStackResult r = airySingleFilmReference(lambdas[k], c, 1.0, layer, coat.substrateIor(k));
+                    const ThinFilmStackResult b = coat.stackRTFromBelow(k, c);
+                    const ThinFilmStackResult rb = airySingleFilmReference(lambdas[k], c, coat.substrateIor(k).real(), layer,
                                                                        complexd(1.0, 0.0));
                     maxDiff = std::max({maxDiff, std::abs(a.R() - r.R()), std::abs(a.T() - r.T()),
                                         std::abs(b.R() - rb.R()), std::abs(b.T() - rb.T())});
@@ -201,7 +201,7 @@ TEST(FilmFastPath, FilmCoatingUsesHoistedConstantsExactly) {
 /// The per-BSDF reuse of stack results (iridescent_diffuse: the stack at cosθo; thinfilm rough
 /// transmission: the last (side, cosθ)) must not change any value: an interleaved sequence of
 /// eval / pdf / sample calls on one BSDF equals the same calls each made on a fresh BSDF.
-TEST(FilmFastPath, StackReuseInBSDFsChangesNothing) {
+TEST(ThinFilmFastPath, StackReuseInBSDFsChangesNothing) {
     const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, 16);
     auto tProps = test::makeProps("thinfilm", {{"substrate", std::string("dielectric")}, {"film_ior", 1.33f},
                                                {"alpha", 0.2f}, {"thickness", 380.0f}, {"substrate_eta", 1.4f}});
@@ -252,7 +252,7 @@ TEST(FilmFastPath, StackReuseInBSDFsChangesNothing) {
 }
 
 
-TEST(FilmFastPath, ConstantIndexIsExactAtEveryWavelength) {
+TEST(ThinFilmFastPath, ConstantIndexIsExactAtEveryWavelength) {
     // A float index is a triple of equal values; it must come back unchanged at every λ (a lerp of
     // it rounded, which made substrate_eta = 1.4 fail the non-dispersive check of transmission).
     auto p = test::makeProps("thinfilm", {{"substrate_eta", 1.4f}, {"film_ior", 1.33f}});
@@ -264,7 +264,7 @@ TEST(FilmFastPath, ConstantIndexIsExactAtEveryWavelength) {
 }
 
 
-TEST(FilmFastPath, SinCosMatchesLibm) {
+TEST(ThinFilmFastPath, SinCosMatchesLibm) {
     // The inline sin/cos of the Airy phase against glibc over the phases films produce (|x| up to
     // 1e5, i.e. 2π·4·100 µm/360 nm ≈ 7e3 with margin), near multiples of π/2 and beyond the range.
     std::mt19937 rng(3);

@@ -1,6 +1,6 @@
-// The exact single-film Airy kernel (spectral/film_airy.h) over all wavelengths of a path at once:
+// The exact single-film Airy kernel (spectral/thin_film_airy.h) over all wavelengths of a path at once:
 // structure-of-arrays inputs, four wavelengths per lane group (lanes::Double4, spectral/lanes.h; an
-// SSE2 and an AVX2 build, spectral/lane_dispatch.h). FilmCoating (materials/film_coating.cpp)
+// SSE2 and an AVX2 build, spectral/lane_dispatch.h). ThinFilmCoating (materials/thin_film_coating.cpp)
 // evaluates every reflectance / transmittance of a single exact film through it. Same formulation
 // as airySingleFilmFastAt, lane by lane, except the complex square root of an absorbing medium
 // (Kahan's form instead of std::sqrt): the lanes agree with the scalar kernel to relative 1e-14,
@@ -34,7 +34,7 @@ struct AiryBatchOutput {
 /// Evaluate entries [0, n), n ≤ 32. Returns a bit mask of the entries where the closed form declined
 /// (den vanishes or underflows: q1 = 0 exactly; or a non-finite result): the caller evaluates those
 /// with the transfer matrix, exactly where airySingleFilmFastAt returns false. Their outputs are
-/// unspecified. Tested lane by lane against airySingleFilmFastAt in tests/spectral/test_film_airy_batch.cpp.
+/// unspecified. Tested lane by lane against airySingleFilmFastAt in tests/spectral/test_thin_film_airy_batch.cpp.
 uint32_t airySingleFilmBatch(const AiryBatchInput& in, int n, const AiryBatchOutput& out);
 
 }  // namespace iris

@@ -1,5 +1,5 @@
 // Thin-film coating parameters and their per-path evaluation (see film_coating.h).
-#include "materials/film_coating.h"
+#include "materials/thin_film_coating.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +9,13 @@
 #include "materials/textures/texture_params.h"
 #include "spectral/belcour_barla.h"
 #include "spectral/conductor_presets.h"
-#include "spectral/film_airy.h"
-#include "spectral/film_airy_batch.h"
+#include "spectral/thin_film_airy.h"
+#include "spectral/thin_film_airy_batch.h"
 #include "spectral/ior_params.h"
 
 namespace iris {
 
-// ---- FilmCoatingSpec ----
+// ---- ThinFilmCoatingSpec ----
 
 namespace {
 
@@ -25,9 +25,9 @@ IOR readExtinction(const Properties& p, const std::string& name, float def) {
 
 }  // namespace
 
-FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
+ThinFilmCoatingSpec ThinFilmCoatingSpec::fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                                 float defThickness, const char* etaName, const char* kName) {
-    FilmCoatingSpec s;
+    ThinFilmCoatingSpec s;
     s.extIor = readConstantIOR(p, "ext_ior", 1.0f);
     s.filmIor = readIOR(p, "film_ior", IOR::constant(1.5f));
     s.filmK = readExtinction(p, "film_k", 0.0f);
@@ -64,22 +64,22 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
     }
 
     const std::string mode = p.getString("phase_mode", "exact");
-    if (mode == "exact") s.mode = FilmPhaseMode::Exact;
-    else if (mode == "incoherent") s.mode = FilmPhaseMode::Incoherent;
-    else if (mode == "truncated") s.mode = FilmPhaseMode::Truncated;
+    if (mode == "exact") s.mode = ThinFilmPhaseMode::Exact;
+    else if (mode == "incoherent") s.mode = ThinFilmPhaseMode::Incoherent;
+    else if (mode == "truncated") s.mode = ThinFilmPhaseMode::Truncated;
     else failAt(p.locationOf("phase_mode"), "phase_mode must be 'exact', 'incoherent' or 'truncated', got '", mode, "'");
     s.bounces = p.getInt("bounces", 1);
     if (s.bounces < 0) failAt(p.locationOf("bounces"), "bounces must be >= 0, got ", s.bounces);
-    if (s.mode != FilmPhaseMode::Exact && !s.extra.empty())
+    if (s.mode != ThinFilmPhaseMode::Exact && !s.extra.empty())
         failAt(p.locationOf("phase_mode"), "phase_mode '", mode, "' applies to a single film; extra layers need 'exact'");
 
     const std::string rgb = p.getString("rgb_mode", "point");
-    if (rgb == "point") s.rgbMode = FilmRGBMode::Point;
-    else if (rgb == "belcour_barla") s.rgbMode = FilmRGBMode::BelcourBarla;
+    if (rgb == "point") s.rgbMode = ThinFilmRGBMode::Point;
+    else if (rgb == "belcour_barla") s.rgbMode = ThinFilmRGBMode::BelcourBarla;
     else failAt(p.locationOf("rgb_mode"), "rgb_mode must be 'point' or 'belcour_barla', got '", rgb, "'");
-    if (s.rgbMode == FilmRGBMode::BelcourBarla) {
+    if (s.rgbMode == ThinFilmRGBMode::BelcourBarla) {
         if (!s.extra.empty()) failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' supports a single film only");
-        if (s.mode != FilmPhaseMode::Exact)
+        if (s.mode != ThinFilmPhaseMode::Exact)
             failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' integrates the exact Airy sum; use phase_mode 'exact'");
         for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f)
             if (s.filmK.eval(l) != 0)
@@ -88,19 +88,19 @@ FilmCoatingSpec FilmCoatingSpec::fromProperties(const Properties& p, float defSu
     return s;
 }
 
-// ---- FilmCoating ----
+// ---- ThinFilmCoating ----
 
 namespace {
 /// Textured thickness: negative, NaN or infinite values (e.g. from a bitmap) become 0 nm.
 double sanitizeThickness(float t) { return std::isfinite(t) ? std::max(0.0f, t) : 0.0; }
 }  // namespace
 
-FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena)
+ThinFilmCoating::ThinFilmCoating(const ThinFilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena)
     : n_(wl.size()),
       nExtra_(int(spec.extra.size())),
       bounces_(spec.bounces),
       mode_(spec.mode),
-      belcourBarla_(wl.isRGB() && spec.rgbMode == FilmRGBMode::BelcourBarla),
+      belcourBarla_(wl.isRGB() && spec.rgbMode == ThinFilmRGBMode::BelcourBarla),
       extIor_(spec.extIor),
       thickness_(sanitizeThickness(spec.thickness->eval(q))) {
     rgb_ = wl.isRGB();
@@ -127,7 +127,7 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
     init(spec, arena, [&](int j, int k) { return complexd(extra[2 * j][k], extra[2 * j + 1][k]); });
 }
 
-FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena)
+ThinFilmCoating::ThinFilmCoating(const ThinFilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena)
     : n_(n),
       nExtra_(int(spec.extra.size())),
       bounces_(spec.bounces),
@@ -143,11 +143,11 @@ FilmCoating::FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, con
 }
 
 template <typename ExtraIorAt>
-void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor) {
-    if (mode_ == FilmPhaseMode::Exact && nExtra_ == 0) {
+void ThinFilmCoating::init(const ThinFilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor) {
+    if (mode_ == ThinFilmPhaseMode::Exact && nExtra_ == 0) {
         // The exact single film needs no Layer array (the rare transfer-matrix fallback builds its
         // layer from film_ and thickness_): only the Airy constants, in SoA form, computed for all
-        // lanes at once with the operations of squaredIndex and airyFilmConstants (film_stack.cpp),
+        // lanes at once with the operations of squaredIndex and airyFilmConstants (thin_film_stack.cpp),
         // written out: calling those per lane instead made this constructor 1.7x the instructions
         // (5.4 M -> 9.4 M on the thin-film scene in RGB mode, 3 spp) because the loop no longer
         // vectorises.
@@ -199,8 +199,8 @@ void FilmCoating::init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& e
 }
 
 namespace {
-/// Truncated sums are not energy conserving (film_stack.h): clamp R to [0,1] and T to [0, 1 − R].
-FilmStackResult clampEnergy(FilmStackResult r) {
+/// Truncated sums are not energy conserving (thin_film_stack.h): clamp R to [0,1] and T to [0, 1 − R].
+ThinFilmStackResult clampEnergy(ThinFilmStackResult r) {
     r.Rs = std::clamp(r.Rs, 0.0, 1.0);
     r.Rp = std::clamp(r.Rp, 0.0, 1.0);
     r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
@@ -209,15 +209,15 @@ FilmStackResult clampEnergy(FilmStackResult r) {
 }
 }  // namespace
 
-FilmStackResult FilmCoating::stackRT(int k, double cosTheta) const {
+ThinFilmStackResult ThinFilmCoating::stackRT(int k, double cosTheta) const {
     if (airy_) return exactAt(k, cosTheta, false, airyAngle(cosTheta, extIor_));  // exact single film, hoisted constants
     const int stride = 1 + nExtra_;
     if (nExtra_ == 0)
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
-    return filmStackRT(lambda_[k], cosTheta, extIor_, std::span<const Layer>(layers_ + k * stride, stride), substrate_[k]);
+    return thinFilmStackRT(lambda_[k], cosTheta, extIor_, std::span<const Layer>(layers_ + k * stride, stride), substrate_[k]);
 }
 
-FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
+ThinFilmStackResult ThinFilmCoating::stackRTFromBelow(int k, double cosTheta) const {
     const int stride = 1 + nExtra_;
     const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
     if (airy_) return exactAt(k, cosTheta, true, airyAngle(cosTheta, inc));
@@ -225,15 +225,15 @@ FilmStackResult FilmCoating::stackRTFromBelow(int k, double cosTheta) const {
         return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
     Layer rev[9];
     for (int j = 0; j < stride; ++j) rev[j] = layers_[k * stride + stride - 1 - j];
-    return filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
+    return thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
 }
 
 /// Exact single film at entry k (airy_ set: one film, no extra layers) from the hoisted constants
 /// and the angle terms of the incident medium (the substrate when `below`). When the fast kernel
 /// declines (q1 = 0 exactly, or a non-finite result) the transfer matrix takes over, as in
 /// airySingleFilm. exactAll is the same over all entries at once.
-inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
-    FilmStackResult r;
+inline ThinFilmStackResult ThinFilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
+    ThinFilmStackResult r;
     const AiryFilmConstants film{complexd(airyArray(kN1Re)[k], airyArray(kN1Im)[k]),
                                  complexd(airyArray(kInv1Re)[k], airyArray(kInv1Im)[k]), airyArray(kK0d)[k]};
     const int sub = below ? kExtRe : kN2Re;  // the four substrate arrays follow each other
@@ -249,14 +249,14 @@ inline FilmStackResult FilmCoating::exactAt(int k, double cosTheta, bool below, 
     return exactFallback(k, cosTheta, below);
 }
 
-FilmStackResult FilmCoating::exactFallback(int k, double cosTheta, bool below) const {
+ThinFilmStackResult ThinFilmCoating::exactFallback(int k, double cosTheta, bool below) const {
     const double inc = below ? substrate_[k].real() : extIor_;
     const complexd sub = below ? complexd(extIor_, 0.0) : substrate_[k];
     const Layer film{film_[k], thickness_};
-    return clampEnergy(filmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
+    return clampEnergy(thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
 }
 
-void FilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
+void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
     const int pad = airyStride_;
     alignas(32) double s2[kMaxWavelengths], y0s[kMaxWavelengths], y0p[kMaxWavelengths];
     if (!below) {
@@ -289,19 +289,19 @@ void FilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, Samp
     while (declined) {  // the rare entries the closed form declines: the transfer matrix (as exactAt)
         const int k = __builtin_ctz(declined);
         declined &= declined - 1;
-        const FilmStackResult r = exactFallback(k, cosTheta, below);
+        const ThinFilmStackResult r = exactFallback(k, cosTheta, below);
         Rs[k] = r.Rs;
         Rp[k] = r.Rp;
         Ts[k] = r.Ts;
         Tp[k] = r.Tp;
     }
     // As exactAt: the kernel's R, T ∈ [0, 1], and T ≤ 1 − R (the fallback's values already satisfy it).
-    for (int k = 0; k < n_; ++k) R[k] = float(0.5 * (Rs[k] + Rp[k]));  // FilmStackResult::R()
+    for (int k = 0; k < n_; ++k) R[k] = float(0.5 * (Rs[k] + Rp[k]));  // ThinFilmStackResult::R()
     if (T)
         for (int k = 0; k < n_; ++k) (*T)[k] = float(0.5 * (std::min(Ts[k], 1.0 - Rs[k]) + std::min(Tp[k], 1.0 - Rp[k])));
 }
 
-SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
+SampledSpectrum ThinFilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
     if (airy_ && !belcourBarla_) {
         exactAll(cosTheta, false, R, nullptr);
@@ -316,7 +316,7 @@ SampledSpectrum FilmCoating::reflectance(float cosTheta) const {
     return R;
 }
 
-void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
+void ThinFilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
     if (airy_ && !belcourBarla_) {
@@ -324,7 +324,7 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
         return;
     }
     for (int k = 0; k < n_; ++k) {
-        const FilmStackResult r = stackRT(k, cosTheta);
+        const ThinFilmStackResult r = stackRT(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
         if (belcourBarla_ && substrate_[k].imag() == 0) {
@@ -335,7 +335,7 @@ void FilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, S
     }
 }
 
-void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
+void ThinFilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
     if (airy_) {
@@ -343,7 +343,7 @@ void FilmCoating::fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectru
         return;
     }
     for (int k = 0; k < n_; ++k) {
-        const FilmStackResult r = stackRTFromBelow(k, cosTheta);
+        const ThinFilmStackResult r = stackRTFromBelow(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());
     }
@@ -356,17 +356,17 @@ constexpr int kRintNodes = 16;
 
 }  // namespace
 
-double FilmCoating::internalHemisphericalReflectance(int k) const {
+double ThinFilmCoating::internalHemisphericalReflectance(int k) const {
     if (!rint_) return internalHemisphericalReflectanceDirect(k);
     if (rgb_) return rint_->rgb[k];
-    const float x = (float(lambda_[k]) - kLambdaMin) / FilmCoatingSpec::RintCache::kStep;
+    const float x = (float(lambda_[k]) - kLambdaMin) / ThinFilmCoatingSpec::RintCache::kStep;
     const int last = int(rint_->table.size()) - 1;
     const int i = std::clamp(int(x), 0, last - 1);
     const float t = std::clamp(x - float(i), 0.0f, 1.0f);
     return lerp(t, rint_->table[i], rint_->table[i + 1]);
 }
 
-void FilmCoatingSpec::precomputeInternalReflectance(const vec3& rgbLambdas) {
+void ThinFilmCoatingSpec::precomputeInternalReflectance(const vec3& rgbLambdas) {
     if (!thickness->isConstant()) return;
     rintCache.reset();  // the coatings below must compute directly
     auto cache = std::make_shared<RintCache>();
@@ -377,18 +377,18 @@ void FilmCoatingSpec::precomputeInternalReflectance(const vec3& rgbLambdas) {
         const int m = std::min(kMaxWavelengths, n - i);
         float lambdas[kMaxWavelengths];
         for (int j = 0; j < m; ++j) lambdas[j] = kLambdaMin + (i + j) * RintCache::kStep;
-        const FilmCoating c(*this, TextureQuery{}, lambdas, m, arena);
+        const ThinFilmCoating c(*this, TextureQuery{}, lambdas, m, arena);
         for (int j = 0; j < m; ++j) cache->table[i + j] = float(c.internalHemisphericalReflectanceDirect(j));
         arena.reset();
     }
     const SampledWavelengths rgbWl = SampledWavelengths::rgb(rgbLambdas);
-    const FilmCoating c(*this, TextureQuery{}, rgbWl, arena);
+    const ThinFilmCoating c(*this, TextureQuery{}, rgbWl, arena);
     for (int k = 0; k < 3; ++k) cache->rgb[k] = float(c.internalHemisphericalReflectanceDirect(k));
     cache->rgbLambdas = rgbLambdas;
     rintCache = std::move(cache);
 }
 
-double FilmCoating::internalHemisphericalReflectanceDirect(int k) const {
+double ThinFilmCoating::internalHemisphericalReflectanceDirect(int k) const {
     const GaussLegendre& g = gaussLegendre(kRintNodes);
     const double nSub = substrate_[k].real();
     // Below μc the exterior wave is evanescent: R = 1 for lossless layers, < 1 with absorption or

@@ -1,5 +1,5 @@
 // Thin-film stack optics from Python, over arrays of wavelength and angle: the transfer matrix
-// (filmStackRT), the single-film Airy / truncated-K / incoherent sums (spectral/film_stack.h) and
+// (thinFilmStackRT), the single-film Airy / truncated-K / incoherent sums (spectral/thin_film_stack.h) and
 // the Belcour–Barla RGB reflectance (spectral/belcour_barla.h). The package broadcasts the inputs
 // to flat arrays of one length n; every value is the C++ function's own double result.
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include "apps/python/bindings.h"
 #include "spectral/belcour_barla.h"
 #include "spectral/conductor_presets.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 #include "spectral/ior_presets.h"
 
 namespace iris::python {
@@ -49,10 +49,10 @@ StackInputs stackInputs(const py::array& lambdaNm, const py::array& cosTheta, co
     return in;
 }
 
-FilmPhaseMode phaseMode(const std::string& mode) {
-    if (mode == "airy") return FilmPhaseMode::Exact;
-    if (mode == "truncated") return FilmPhaseMode::Truncated;
-    if (mode == "incoherent") return FilmPhaseMode::Incoherent;
+ThinFilmPhaseMode phaseMode(const std::string& mode) {
+    if (mode == "airy") return ThinFilmPhaseMode::Exact;
+    if (mode == "truncated") return ThinFilmPhaseMode::Truncated;
+    if (mode == "incoherent") return ThinFilmPhaseMode::Incoherent;
     fail("mode: unknown '", mode, "' (expected transfer_matrix, airy, truncated or incoherent)");
 }
 
@@ -74,9 +74,9 @@ py::array_t<double> stackRT(const py::array& lambdaNm, const py::array& cosTheta
     }
     for (py::ssize_t i = 0; i < n; ++i) checkIndex(sub.data()[i], "substrate_ior", i);
     const bool transfer = mode == "transfer_matrix";
-    const FilmPhaseMode single = transfer ? FilmPhaseMode::Exact : phaseMode(mode);
+    const ThinFilmPhaseMode single = transfer ? ThinFilmPhaseMode::Exact : phaseMode(mode);
     if (!transfer && L != 1) fail("mode '", mode, "' is a single-film formula: give exactly one layer (got ", L, ")");
-    if (single == FilmPhaseMode::Truncated && K < 0) fail("K: must be >= 0 round trips, got ", K);
+    if (single == ThinFilmPhaseMode::Truncated && K < 0) fail("K: must be >= 0 round trips, got ", K);
 
     std::vector<double> out(size_t(4 * n));
     {
@@ -85,7 +85,7 @@ py::array_t<double> stackRT(const py::array& lambdaNm, const py::array& cosTheta
         for (py::ssize_t i = 0; i < n; ++i) {
             for (py::ssize_t j = 0; j < L; ++j) layers[size_t(j)] = {iors.data()[j * n + i], d.data()[j]};
             const double l = in.lambda.data()[i], c = in.cosTheta.data()[i], n0 = in.incident.data()[i];
-            const FilmStackResult r = transfer ? filmStackRT(l, c, n0, layers, sub.data()[i])
+            const ThinFilmStackResult r = transfer ? thinFilmStackRT(l, c, n0, layers, sub.data()[i])
                                                : singleFilmRT(single, K, l, c, n0, layers[0], sub.data()[i]);
             out[size_t(i)] = r.Rs;
             out[size_t(n + i)] = r.Rp;

@@ -32,7 +32,7 @@ struct Layer {
 };
 
 /// Reflectance / transmittance of a stack for s and p polarisation (powers, not amplitudes).
-struct FilmStackResult {
+struct ThinFilmStackResult {
     double Rs = 0, Rp = 0, Ts = 0, Tp = 0;
     double R() const { return 0.5 * (Rs + Rp); }  // unpolarised: mean of s and p
     double T() const { return 0.5 * (Ts + Tp); }
@@ -53,19 +53,19 @@ complexd normalWaveNumber(complexd ior, double sinInvariant);
 /// Interface amplitudes for light in a medium with index `iorI` (real) at cosθi onto `iorT`.
 FresnelAmplitudes fresnelAmplitudes(double cosThetaI, double iorI, complexd iorT);
 /// Power reflectance of one interface (|r_s|², |r_p|²) and transmittance into `iorT`
-/// (Re(y_t)/y_i |t|², zero beyond the critical angle). Equals filmStackRT with no layers.
-FilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT);
+/// (Re(y_t)/y_i |t|², zero beyond the critical angle). Equals thinFilmStackRT with no layers.
+ThinFilmStackResult fresnelInterfaceRT(double cosThetaI, double iorI, complexd iorT);
 
 /// Transfer-matrix (characteristic-matrix) method for any number of layers, top→bottom
 /// (Born & Wolf §1.6.2–1.6.4, Macleod ch. 2). `cosThetaIncident` ∈ [0,1] in the real incident medium
 /// `incidentIor` (> 0, may be denser than the substrate: total internal reflection is handled).
 /// Each layer matrix is scaled by e^{iδ_j} so that only e^{2iδ_j}, |e^{2iδ_j}| ≤ 1, appears
 /// (never e^{+κd}); the running vector is renormalised and its log scale tracked for T.
-FilmStackResult filmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult thinFilmStackRT(double lambdaNm, double cosThetaIncident, double incidentIor,
                             std::span<const Layer> layers, complexd substrateIor);
 
 /// How the internal reflections of a single film are summed (docs/thin_film.md §Phase modes).
-enum class FilmPhaseMode {
+enum class ThinFilmPhaseMode {
     Exact,       // coherent Airy sum to infinity (closed form)
     Truncated,   // coherent sum keeping beams that cross the film at most 2K times
     Incoherent,  // phase-averaged sum of intensities
@@ -74,18 +74,18 @@ enum class FilmPhaseMode {
 /// Closed-form Airy summation for one film (Born & Wolf §1.6.4; Heavens,
 /// "Optical Properties of Thin Solid Films", ch. 4):  r = (r01 + r12 e^{2iδ})/(1 + r01 r12 e^{2iδ}),
 /// t = t01 t12 e^{iδ}/(1 + r01 r12 e^{2iδ}),  δ = 2π ñ1 d cosθ1 / λ.
-/// Evaluated by airySingleFilmFast (below); where that declines, by the transfer matrix (filmStackRT).
-FilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
+/// Evaluated by airySingleFilmFast (below); where that declines, by the transfer matrix (thinFilmStackRT).
+ThinFilmStackResult airySingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor, const Layer& film,
                                complexd substrateIor);
 
 /// The original formulation of airySingleFilm (complex interface coefficients r01, r12 and
 /// std::complex division). Kept as the reference the fast path is tested against (and for the
 /// benchmark's before/after figure); the renderer does not call it.
-FilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult airySingleFilmReference(double lambdaNm, double cosThetaIncident, double incidentIor,
                                         const Layer& film, complexd substrateIor);
 
 /// Angle-independent part of the exact Airy sum at one wavelength, hoisted out of per-evaluation
-/// code (FilmCoating keeps one per path wavelength): film ñ1², 1/ñ1² and k0 d = 2π d/λ.
+/// code (ThinFilmCoating keeps one per path wavelength): film ñ1², 1/ñ1² and k0 d = 2π d/λ.
 struct AiryFilmConstants {
     complexd n1sq, invN1sq;
     double k0d = 0;
@@ -110,26 +110,26 @@ AiryFilmConstants airyFilmConstants(double lambdaNm, double thicknessNm, const S
 /// radicand is real (lossless film or substrate: real below the critical angle, imaginary beyond).
 /// Returns false (out untouched) when den vanishes or underflows (q1 = 0 exactly) or a result is
 /// not finite; airySingleFilm then uses the transfer matrix. Tested against the transfer matrix
-/// and the reference in tests/materials/test_film_fast.cpp.
+/// and the reference in tests/materials/test_thin_film_fast.cpp.
 bool airySingleFilmFast(double cosThetaIncident, double incidentIor, const AiryFilmConstants& film,
-                        const SquaredIndex& substrate, FilmStackResult& out);
+                        const SquaredIndex& substrate, ThinFilmStackResult& out);
 
 /// Coherent sum truncated after K ≥ 0 round trips: reflection keeps the direct beam and K beams
 /// that made 1..K round trips (K = 1: two-beam interference), transmission the K beams with
 /// 0..K−1 round trips (K = 0 gives T = 0). Not energy conserving for finite K: R may exceed 1
 /// for strongly reflecting interfaces; callers that need a reflectance clamp it.
-FilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult truncatedSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
                                     const Layer& film, complexd substrateIor, int K);
 
 /// Incoherent (phase-averaged) sum of intensities with the film's single-pass attenuation
 /// a = |e^{iδ}|² = e^{−2 Im δ}:  R = R01 + T01 T10 R12 a² / (1 − R10 R12 a²),
 /// T = T01 T12 a / (1 − R10 R12 a²)  (Heavens ch. 4; Macleod ch. 2 on thick incoherent layers). Interface transmittances are
 /// 1 − R (exact for a lossless film; for an absorbing film the standard approximation).
-FilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult incoherentSingleFilm(double lambdaNm, double cosThetaIncident, double incidentIor,
                                      const Layer& film, complexd substrateIor);
 
 /// Dispatch on the phase mode (K is used by Truncated only).
-FilmStackResult singleFilmRT(FilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
+ThinFilmStackResult singleFilmRT(ThinFilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident, double incidentIor,
                              const Layer& film, complexd substrateIor);
 
 }  // namespace iris

@@ -1,7 +1,7 @@
-// Cost of the thin-film optics (spectral/film_stack.h) and of the thin-film BSDFs:
+// Cost of the thin-film optics (spectral/thin_film_stack.h) and of the thin-film BSDFs:
 // Airy closed form vs transfer matrix vs truncated / incoherent sums, the Belcour–Barla RGB
 // integration, and eval() of thinfilm / iridescent_diffuse at 4 wavelengths.
-//   build/bench_film [--benchmark_filter=...]
+//   build/bench_thin_film [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -10,7 +10,7 @@
 #include "core/registry.h"
 #include "spectral/belcour_barla.h"
 #include "materials/material.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 using namespace iris;
 
@@ -32,7 +32,7 @@ void BM_TransferMatrix(benchmark::State& st) {
     std::vector<Layer> layers(st.range(0), kFilm);
     double c = 0.3;
     for (auto _ : st) {
-        benchmark::DoNotOptimize(filmStackRT(550.0, c, 1.0, layers, kMetal));
+        benchmark::DoNotOptimize(thinFilmStackRT(550.0, c, 1.0, layers, kMetal));
         c = c < 0.99 ? c + 1e-3 : 0.3;
     }
 }

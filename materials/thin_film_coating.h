@@ -1,7 +1,7 @@
 // A thin-film coating as materials use it: the scene-level description (indices as IORs,
 // spectral/ior.h; thickness texture, extra layers, substrate, phase mode) and its per-path
 // instance with the complex indices at the path's wavelengths, which evaluates the exact stack
-// reflectance / transmittance (spectral/film_stack.h) at any angle. Parameters: docs/thin_film.md.
+// reflectance / transmittance (spectral/thin_film_stack.h) at any angle. Parameters: docs/thin_film.md.
 #pragma once
 
 #include <memory>
@@ -11,21 +11,21 @@
 #include "core/arena.h"
 #include "core/properties.h"
 #include "materials/textures/texture.h"
-#include "spectral/film_airy_batch.h"
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_airy_batch.h"
+#include "spectral/thin_film_stack.h"
 #include "spectral/ior.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
 
 namespace iris {
 
-struct AiryAngle;  // spectral/film_airy.h
+struct AiryAngle;  // spectral/thin_film_airy.h
 
-enum class FilmSubstrate { Conductor, Dielectric };
-enum class FilmRGBMode { Point, BelcourBarla };
+enum class ThinFilmSubstrate { Conductor, Dielectric };
+enum class ThinFilmRGBMode { Point, BelcourBarla };
 
 /// Scene-level description of a coating (shared by thinfilm and iridescent_diffuse).
-struct FilmCoatingSpec {
+struct ThinFilmCoatingSpec {
     float extIor = 1.0f;  // incident (exterior) medium, real
     IOR filmIor = IOR::constant(1.5f), filmK = IOR::constant(0.0f);
     FloatTexturePtr thickness;  // nm
@@ -35,11 +35,11 @@ struct FilmCoatingSpec {
     };
     std::vector<ExtraLayer> extra;  // below the film, top → bottom
     IOR substrateEta = IOR::constant(1.5f), substrateK = IOR::constant(0.0f);
-    FilmPhaseMode mode = FilmPhaseMode::Exact;
+    ThinFilmPhaseMode mode = ThinFilmPhaseMode::Exact;
     int bounces = 1;
-    FilmRGBMode rgbMode = FilmRGBMode::Point;
+    ThinFilmRGBMode rgbMode = ThinFilmRGBMode::Point;
 
-    /// Cache of the hemispherical internal reflectance (FilmCoating::internalHemisphericalReflectance)
+    /// Cache of the hemispherical internal reflectance (ThinFilmCoating::internalHemisphericalReflectance)
     /// for a constant thickness: spectral mode reads r_int(λ) from a table at kRintStep nm over
     /// [360, 830] (linear interpolation), RGB mode with the given channel wavelengths reads rgb.
     struct RintCache {
@@ -58,27 +58,27 @@ struct FilmCoatingSpec {
     /// on invalid values. `etaName`/`kName` name the substrate's parameters (kName = nullptr: a
     /// real substrate, k = 0, e.g. etaName "int_ior"). With a kName, `substrate_material` may
     /// instead name a conductor preset (conductor_presets.h).
-    static FilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
+    static ThinFilmCoatingSpec fromProperties(const Properties& p, float defSubstrateEta, float defSubstrateK,
                                           float defThickness = 300.0f, const char* etaName = "substrate_eta",
                                           const char* kName = "substrate_k");
 };
 
-/// The arguments of FilmCoating's per-path constructor, so that a BSDF can build its coating member
-/// in place (FilmCoating is over 1 KB: a temporary plus a copy per shading point is avoidable).
-struct FilmCoatingArgs {
-    const FilmCoatingSpec& spec;
+/// The arguments of ThinFilmCoating's per-path constructor, so that a BSDF can build its coating member
+/// in place (ThinFilmCoating is over 1 KB: a temporary plus a copy per shading point is avoidable).
+struct ThinFilmCoatingArgs {
+    const ThinFilmCoatingSpec& spec;
     const TextureQuery& tex;
     const SampledWavelengths& wl;
     Arena& arena;
 };
 
 /// Per-path instance: indices at the path's wavelengths. Trivially destructible (arena).
-class FilmCoating {
+class ThinFilmCoating {
 public:
     /// Evaluate the spec at a surface point for wavelengths wl (extra layers go to the arena).
-    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena);
+    ThinFilmCoating(const ThinFilmCoatingSpec& spec, const TextureQuery& q, const SampledWavelengths& wl, Arena& arena);
     /// Spectral-mode instance at explicit wavelengths (n ≤ kMaxWavelengths), for precomputation.
-    FilmCoating(const FilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena);
+    ThinFilmCoating(const ThinFilmCoatingSpec& spec, const TextureQuery& q, const float* lambdas, int n, Arena& arena);
 
     int size() const { return n_; }
     double thicknessNm() const { return thickness_; }
@@ -95,8 +95,8 @@ public:
     /// in the substrate at cosθ towards the film, exiting into the exterior medium.
     void fromBelowRT(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
     /// Stack result at entry k (exterior side).
-    FilmStackResult stackRT(int k, double cosTheta) const;
-    FilmStackResult stackRTFromBelow(int k, double cosTheta) const;
+    ThinFilmStackResult stackRT(int k, double cosTheta) const;
+    ThinFilmStackResult stackRTFromBelow(int k, double cosTheta) const;
 
     /// Hemispherical (cosine-weighted) reflectance of the stack lit from the substrate side,
     /// r_int = 2 ∫_0^1 R_below(μ) μ dμ, at entry k: Gauss–Legendre quadrature (16 nodes) on each side of
@@ -111,15 +111,15 @@ public:
     complexd substrateIor(int k) const { return substrate_[k]; }
 
 private:
-    FilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
-    FilmStackResult exactFallback(int k, double cosTheta, bool below) const;  // transfer matrix
+    ThinFilmStackResult exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const;
+    ThinFilmStackResult exactFallback(int k, double cosTheta, bool below) const;  // transfer matrix
     /// Builds the Airy arrays or the layer rows from lambda_, film_, substrate_ (set by the
     /// constructors); extraIor(j, k) is the complex index of extra layer j at entry k.
     template <typename ExtraIorAt>
-    void init(const FilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor);
+    void init(const ThinFilmCoatingSpec& spec, Arena& arena, ExtraIorAt&& extraIor);
 
     int n_ = 0, nExtra_ = 0, bounces_ = 1;
-    FilmPhaseMode mode_ = FilmPhaseMode::Exact;
+    ThinFilmPhaseMode mode_ = ThinFilmPhaseMode::Exact;
     bool belcourBarla_ = false;
     double extIor_ = 1.0, thickness_ = 0.0;
     double lambda_[kMaxWavelengths];
@@ -127,7 +127,7 @@ private:
     complexd substrate_[kMaxWavelengths];
     Layer* layers_ = nullptr;  // per entry k: layers_[k·(1+nExtra) + j], j = 0 the film
     /// Exact mode with a single film: the angle-independent Airy constants per entry (arena,
-    /// structure of arrays padded to kAiryLanes for spectral/film_airy_batch.h), hoisted out of every
+    /// structure of arrays padded to kAiryLanes for spectral/thin_film_airy_batch.h), hoisted out of every
     /// evaluation; nullptr otherwise. Arrays: film ñ1² (re, im), 1/ñ1² (re, im), k0 d, substrate ñ2²
     /// (re, im), 1/ñ2² (re, im), and the exterior's ñ0², 1/ñ0² repeated (the substrate of the
     /// reversed stack, fromBelow).
@@ -138,7 +138,7 @@ private:
     const double* airyArray(AiryArray a) const { return airy_ + a * airyStride_; }
     /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
     void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
-    const FilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
+    const ThinFilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;
 };
 

@@ -1,12 +1,12 @@
-// The fast exact single-film Airy kernel (film_stack.h airySingleFilmFast), inline so that
-// FilmCoating's per-path loop over wavelengths (materials/film_coating.cpp) can inline it; see
+// The fast exact single-film Airy kernel (thin_film_stack.h airySingleFilmFast), inline so that
+// ThinFilmCoating's per-path loop over wavelengths (materials/thin_film_coating.cpp) can inline it; see
 // film_stack.h for the formulation and docs/thin_film.md §8.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 namespace iris {
 namespace airy_detail {
@@ -30,7 +30,7 @@ inline complexd waveFromRadicand(complexd z) {
 }
 
 /// The argument reduction and polynomials of sinCos below, shared with the batched kernel
-/// (spectral/film_airy_batch.cpp; T = double or a vector of doubles): Cody–Waite reduction
+/// (spectral/thin_film_airy_batch.cpp; T = double or a vector of doubles): Cody–Waite reduction
 /// x = j·π/2 + r with π/2 split into three parts (the 33-bit pieces and tail of fdlibm's
 /// __ieee754_rem_pio2, so j·p1 and j·p2 are exact for |j| < 2²⁰), then the Taylor series of sin r to
 /// r¹⁵ and cos r to r¹⁶ on |r| ≤ π/4 (truncation < 5e-17). `shifted` = x·2/π + 1.5·2⁵² holds j as an
@@ -55,7 +55,7 @@ template <typename T>
 
 /// sin x and cos x together, inline (one polynomial pair instead of a libm sincos call), for the
 /// Airy phase: sinCosReduced, then the quadrant j mod 4. |x| > 1e5 (films thicker than ~1 mm):
-/// std::sin / std::cos. Agreement with glibc: tests/materials/test_film_fast.cpp (FilmFastPath.SinCosMatchesLibm).
+/// std::sin / std::cos. Agreement with glibc: tests/materials/test_thin_film_fast.cpp (ThinFilmFastPath.SinCosMatchesLibm).
 inline void sinCos(double x, double& sinX, double& cosX) {
     if (!(std::abs(x) <= 1e5)) {
         sinX = std::sin(x);
@@ -87,10 +87,10 @@ inline AiryAngle airyAngle(double cosThetaIncident, double incidentIor) {
     return {s * s, q0, q0 / (incidentIor * incidentIor)};
 }
 
-/// airySingleFilmFast with the angle terms precomputed (FilmCoating: once per evaluation for all
+/// airySingleFilmFast with the angle terms precomputed (ThinFilmCoating: once per evaluation for all
 /// wavelengths).
 inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
-                                 FilmStackResult& out) {
+                                 ThinFilmStackResult& out) {
     using namespace airy_detail;
     const double s2 = angle.s2;
     // Normal wave numbers q_j = sqrt(ñ_j² − s²), Im q_j ≥ 0 (Born & Wolf §1.5, ch. 14).

@@ -1,4 +1,4 @@
-// Numerical stress of the thin-film stack optics (spectral/film_stack.h; issue 7, docs/numerics.md).
+// Numerical stress of the thin-film stack optics (spectral/thin_film_stack.h; issue 7, docs/numerics.md).
 //
 //  * DenseSingleFilmGrid: Airy (exact, incoherent, truncated K = 8) and the transfer-matrix method
 //    over a dense grid — angles 0 … 89.99°, film η 1.0001 … 4, k 0 … 10, thickness 0 … 1e5 nm,
@@ -25,7 +25,7 @@
 #include <sstream>
 #include <vector>
 
-#include "spectral/film_stack.h"
+#include "spectral/thin_film_stack.h"
 
 using namespace iris;
 
@@ -92,8 +92,8 @@ TEST(FilmStackStress, DenseSingleFilmGrid) {
                             for (double n0 : kIncident) {
                                 const double c = cosDeg(deg);
                                 const Layer film{complexd(eta, k), d};
-                                const FilmStackResult r[4] = {airySingleFilm(lambda, c, n0, film, sub),
-                                                              filmStackRT(lambda, c, n0, std::span(&film, 1), sub),
+                                const ThinFilmStackResult r[4] = {airySingleFilm(lambda, c, n0, film, sub),
+                                                              thinFilmStackRT(lambda, c, n0, std::span(&film, 1), sub),
                                                               incoherentSingleFilm(lambda, c, n0, film, sub),
                                                               truncatedSingleFilm(lambda, c, n0, film, sub, 8)};
                                 ++n;
@@ -157,7 +157,7 @@ TEST(FilmStackStress, RandomFiftyLayerStacks) {
         const double deg = pickA < 0.1 ? 89.99 : pickA < 0.15 ? 0.0 : 89.99 * U(rng);
         const double lambda = i % 7 == 0 ? 360.0 : i % 7 == 1 ? 830.0 : 360 + 470 * U(rng);
         const double n0 = U(rng) < 0.3 ? 1.0 + 3.0 * U(rng) : 1.0;
-        const FilmStackResult r = filmStackRT(lambda, cosDeg(deg), n0, layers, sub);
+        const ThinFilmStackResult r = thinFilmStackRT(lambda, cosDeg(deg), n0, layers, sub);
         std::ostringstream where;
         where << "stack " << i << " (" << count << " layers) theta=" << deg << " lambda=" << lambda << " n0=" << n0;
         for (double v : {r.Rs, r.Rp, r.Ts, r.Tp})
@@ -247,7 +247,7 @@ TEST(FilmStackStress, FloatAiryAgainstDouble) {
                         for (const complexd& sub : kSubs) {
                             const double n0 = 1.0, c = cosDeg(deg);
                             const complexd film(eta, k);
-                            const FilmStackResult lib = airySingleFilm(lambda, c, n0, {film, d}, sub);
+                            const ThinFilmStackResult lib = airySingleFilm(lambda, c, n0, {film, d}, sub);
                             const AiryResult<double> dbl = airyT<double, false>(lambda, c, n0, film, d, sub);
                             const AiryResult<double> dblStable = airyT<double, true>(lambda, c, n0, film, d, sub);
                             const std::complex<float> filmF{float(eta), float(k)}, subF{float(sub.real()), float(sub.imag())};
