@@ -15,8 +15,8 @@
 #include "core/error.h"
 #include "core/io/image.h"
 #include "core/io/spectral_layout.h"
-#include "experiments/metrics/flip.h"
-#include "experiments/metrics/image_metrics.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
 #include "spectral/color_space.h"
 #include "spectral/spectral_bins.h"
 

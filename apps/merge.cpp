@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "core/io/image.h"
-#include "experiments/metrics/merge_renders.h"
+#include "metrics/merge_renders.h"
 #include "render/render_output.h"
 #include "render/film_shard.h"
 #include "spectral/color_management.h"

@@ -2,7 +2,7 @@
 """Phase once or per internal reflection? Thesis 000 §5 names as a limitation that its models apply
 the interference phase once, to the total, instead of to each internal reflection in the film.
 Two scenes answer it:
-  proposed   the thesis' proposed model (materials/proposed.cpp) with phase_mode = total (the thesis,
+  proposed   the thesis' proposed model (materials/thesis/proposed.cpp) with phase_mode = total (the thesis,
              eqs. 3.21–3.22), per_reflection (coherent sum over internal round trips, §5), and the
              phase switched off (phase = false, i.e. rough plastic; thesis §4.2.2);
   thin_film  the exact film-stack material `thinfilm` (docs/thin_film.md §2) with two_beam

@@ -13,7 +13,7 @@
 
 #include "materials/bsdf.h"
 #include "materials/material.h"
-#include "materials/phase/phase_function.h"
+#include "media/phase/phase_function.h"
 #include "render/lights/light.h"
 #include "render/scene.h"
 

@@ -53,7 +53,7 @@ inline RoughCoatGeometry roughCoatGeometry(const MicrofacetDistribution& dist, c
 }
 
 /// The half vector of a (wo, wi) pair and D(h), for a BSDF whose eval and pdf see the same pair
-/// (the integrators call both; materials/proposed.cpp caches this per pair). ok == false: wo + wi
+/// (the integrators call both; materials/thesis/proposed.cpp caches this per pair). ok == false: wo + wi
 /// vanishes (no h).
 struct RoughCoatHalf {
     vec3 h{0, 0, 1};

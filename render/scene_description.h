@@ -14,7 +14,7 @@
 #include "core/mesh.h"
 #include "core/rng.h"
 #include "materials/material.h"
-#include "materials/media/medium.h"
+#include "media/medium.h"
 #include "render/films/ldr_tonemap.h"
 #include "render/filters/rfilter.h"
 #include "core/cylinder_intersection.h"

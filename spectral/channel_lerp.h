@@ -1,7 +1,7 @@
 // Piecewise-linear interpolation through three (λ, value) points: a parameter given per RGB channel
 // at the wavelengths the channels stand for, read at any wavelength in spectral mode (constant
 // outside the channel wavelengths' range; the spectral reading of the thesis' per-channel η_t,
-// thesis 000 §2.4 / §3.2, see materials/thesis_channels.h). The one interpolation of per-channel
+// thesis 000 §2.4 / §3.2, see materials/thesis/thesis_channels.h). The one interpolation of per-channel
 // indices: IOR::perChannel (spectral/ior.h) uses it for every material.
 // The points are sorted once, when the parameter is read, not at every evaluation. Between two
 // equal neighbours it returns their value exactly ((1 − t)a + ta may differ from a by rounding,

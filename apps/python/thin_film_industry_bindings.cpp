@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "apps/python/bindings.h"
-#include "experiments/metrics/color_difference.h"
+#include "metrics/color_difference.h"
 #include "spectral/thin_film_industry.h"
 
 namespace iris::python {
@@ -60,7 +60,7 @@ py::array_t<complexd> gulbrandsen(const py::array& r, const py::array& g) {
 }
 
 /// (n,) CIEDE2000 between linear Rec.709 colours (n, 3), as `compare` measures images
-/// (experiments/metrics/color_difference.h: reference white = RGB white, D65, Y = 1).
+/// (metrics/color_difference.h: reference white = RGB white, D65, Y = 1).
 py::array_t<double> deltaE2000(const py::array& test, const py::array& ref) {
     const RealArray a = inputArray<double>(test, "test", 2, 3), b = inputArray<double>(ref, "reference", 2, 3);
     if (a.shape(0) != b.shape(0)) fail("test and reference must have the same number of colours");

@@ -1,6 +1,6 @@
 // OpenVDB `.vdb` grids (Museth 2013, "VDB: High-resolution sparse volumes with dynamic topology",
 // ACM TOG 32(3); read with Debian's libopenvdb) densified into the voxel grid of a Mitsuba `.vol`
-// (core/io/vol_reader.h), for `gridvolume` (materials/volumes/gridvolume.cpp). Mitsuba 3 reads only
+// (core/io/vol_reader.h), for `gridvolume` (media/volumes/gridvolume.cpp). Mitsuba 3 reads only
 // .vol files; this is iris's form (docs/media.md):
 //  - the grid is the one named `gridName`, or the file's only grid when the name is empty;
 //  - its voxels are those of the bounding box of its active voxels (index space, inclusive),

@@ -788,7 +788,7 @@ def wins_text(ctx):
         gb = share(p, r"ProposedMaterial::getBSDF")
         if tab < 5:
             continue
-        L.append(f"- **Proposed model: rough-coat table look-ups** (materials/proposed.cpp `ProposedMaterial::getBSDF` and "
+        L.append(f"- **Proposed model: rough-coat table look-ups** (materials/thesis/proposed.cpp `ProposedMaterial::getBSDF` and "
                  f"`ProposedBSDF`; materials/rough_plastic_tables.cpp), profile `{name}`: {tab:.1f} % in table "
                  f"interpolation plus {gb:.1f} % in `getBSDF`. Per shading point `getBSDF` builds, per channel, a "
                  "16-entry (η, α) stencil (`line`) and a bicubic Fdr; each `eval` then interpolates 16 μ-lines × 4 "

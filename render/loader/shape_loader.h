@@ -15,7 +15,7 @@ ShapeDescription loadShape(const Properties& shape);
 MaterialPtr materialFor(const Properties& bsdf);
 
 /// The medium for a <medium> Properties, created once per Properties object (MediumRegistry,
-/// materials/media/).
+/// media/).
 MediumPtr mediumFor(const Properties& medium);
 
 }  // namespace iris

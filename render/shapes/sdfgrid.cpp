@@ -9,7 +9,7 @@
 // As in Mitsuba 3, the shape has no uv (uv = 0, tangents around the normal) and cannot be an area
 // emitter (render/loader/shape_loader.cpp refuses one); the .vol file's bounding box is ignored.
 #include "core/io/vol_reader.h"
-#include "materials/volumes/volume.h"  // readToWorld: an invertible, finite to_world
+#include "media/volumes/volume.h"  // readToWorld: an invertible, finite to_world
 #include "render/shapes/shape.h"
 
 namespace iris {

@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "experiments/metrics/merge_renders.h"
+#include "metrics/merge_renders.h"
 
 using namespace iris;
 

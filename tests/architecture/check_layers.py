@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """The folder-level include graph of iris, checked against the layers of docs/architecture.md.
 
-Every C++ file's `#include "folder/..."` lines give edges between folders. A top-level folder may
+Every C++ file's `#include "folder/..."` lines give edges between folders, and so does every
+Python file's `import pkg` / `from pkg import ...` of one of the project's own packages (a folder
+with an __init__.py under a layer folder: `iris` is apps/python/iris, `iris_experiments` is
+experiments/iris_experiments). A top-level folder may
 include headers of its own layer or of lower layers only (the table in docs/architecture.md,
 section "Layers", gives each folder its layer); and the graph of sub-folders (core/io, render/lights,
 ...) must have no cycle. Prints the graph (folders in layer order, each with the folders it
@@ -16,6 +19,7 @@ import sys
 from collections import defaultdict
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+PY_IMPORT = re.compile(r'^\s*(?:from\s+([A-Za-z_]\w*)[\w.]*\s+import\b|import\s+([A-Za-z_]\w*))', re.M)
 LAYER_ROW = re.compile(r'^\|\s*(\d+)\s*\|\s*`([\w./-]+)/`\s*\|', re.M)
 SOURCE_EXT = ('.h', '.hpp', '.cpp', '.cc', '.inl')
 
@@ -37,6 +41,26 @@ def source_files(root, layers):
             dirnames[:] = [d for d in dirnames if d not in ('results', 'corpus', '__pycache__', 'testdata')]
             for name in filenames:
                 if name.endswith(SOURCE_EXT):
+                    yield os.path.relpath(os.path.join(dirpath, name), root)
+
+
+def python_packages(root, layers):
+    """Package name -> its folder (relative to root), for every folder with an __init__.py."""
+    packages = {}
+    for top in layers:
+        for dirpath, dirnames, filenames in os.walk(os.path.join(root, top)):
+            dirnames[:] = [d for d in dirnames if d not in ('results', 'corpus', '__pycache__', 'testdata', 'node_modules')]
+            if '__init__.py' in filenames:
+                packages[os.path.basename(dirpath)] = os.path.relpath(dirpath, root)
+    return packages
+
+
+def python_files(root, layers):
+    for top in layers:
+        for dirpath, dirnames, filenames in os.walk(os.path.join(root, top)):
+            dirnames[:] = [d for d in dirnames if d not in ('results', 'corpus', '__pycache__', 'testdata', 'node_modules')]
+            for name in filenames:
+                if name.endswith('.py'):
                     yield os.path.relpath(os.path.join(dirpath, name), root)
 
 
@@ -109,6 +133,20 @@ def main():
             if a != b:
                 sub_graph[a].add(b)
                 sub_why[(a, b)].append(f'{rel}:{line}')
+
+    packages = python_packages(root, layers)
+    for rel in python_files(root, layers):
+        with open(os.path.join(root, rel), encoding='utf-8', errors='replace') as f:
+            text = f.read()
+        for m in PY_IMPORT.finditer(text):
+            name = m.group(1) or m.group(2)
+            if name not in packages:
+                continue  # the standard library, NumPy, or a module of the file's own folder
+            target = packages[name]
+            line = text.count('\n', 0, m.start()) + 1
+            src_top, target_top = top_of(rel), top_of(target)
+            if src_top != target_top:
+                top_edges[(src_top, target_top)].append(f'{rel}:{line}: import {name}')
 
     for (a, b), why in sorted(top_edges.items()):
         if layers[b] > layers[a]:

@@ -1,4 +1,4 @@
-// FLIP (experiments/metrics/flip.h): invariants of the HPG 2020 paper and of HDR-FLIP (EG 2021),
+// FLIP (metrics/flip.h): invariants of the HPG 2020 paper and of HDR-FLIP (EG 2021),
 // the colour pipeline's documented intermediate values, analytic values for uniform images, and
 // the order of values for known differences. docs/metrics.md ("FLIP") lists what is validated.
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "experiments/metrics/color_difference.h"
-#include "experiments/metrics/flip.h"
+#include "metrics/color_difference.h"
+#include "metrics/flip.h"
 
 using namespace iris;
 

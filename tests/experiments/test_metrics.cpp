@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "experiments/metrics/color_difference.h"
-#include "experiments/metrics/image_metrics.h"
+#include "metrics/color_difference.h"
+#include "metrics/image_metrics.h"
 
 using namespace iris;
 

@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "materials/fresnel.h"
-#include "materials/thesis_channels.h"
+#include "materials/thesis/thesis_channels.h"
 #include "render/loader/scene_loader.h"
 #include "spectral/ior_presets.h"
 #include "tests/support/bsdf_test_util.h"

@@ -49,7 +49,7 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     const std::string mask = loadError("<shape type=\"sphere\">\n<bsdf type=\"mask\"/></shape>\n");
     EXPECT_TRUE(has(mask, "<string>:3: mask: no nested bsdf")) << mask;
     EXPECT_EQ(loadError("<shape type=\"sphere\">\n<bsdf type=\"null\"/></shape>\n"), "");
-    // Media are supported (materials/media/, integrators/volpath.cpp); one that nothing encloses
+    // Media are supported (media/, integrators/volpath.cpp); one that nothing encloses
     // is refused at its line.
     const std::string medium = loadError("<medium type=\"homogeneous\" id=\"fog\"/>\n");
     EXPECT_TRUE(has(medium, "<string>:2:")) << medium;

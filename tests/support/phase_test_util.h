@@ -12,7 +12,7 @@
 #include "core/rng.h"
 #include "core/xml/xml_parser.h"
 #include "core/sampling.h"
-#include "materials/phase/phase_function.h"
+#include "media/phase/phase_function.h"
 #include "tests/support/bsdf_test_util.h"
 
 namespace iris::test {
