@@ -410,6 +410,7 @@ int main(int argc, char** argv) {
             }
             writeOrRescue(ldrPath, [&](const std::string& p) { writeLDR(p, ldr); }, errors);
         }
+        if (!st.checkpointError.empty()) errors += (errors.empty() ? "" : "\n") + ("--checkpoint " + st.checkpointError);
         if (!errors.empty()) {  // one line per output that is not where it was asked
             std::fprintf(stderr, "%s\n", errors.c_str());
             return 1;

@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include "core/io/output_file.h"
+
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -12,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/io/output_file.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
 #include "render/samplers/sampler_description.h"
@@ -252,13 +255,27 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (checkpoints) {
             lastComplete = film;
             if (opt_.checkpointEvery > 0 && secondsSince(lastCheckpoint) >= opt_.checkpointEvery) {
-                film.save(opt_.checkpointPath, stateHeader());
+                // A failed periodic write (a full disk, a removed folder) must not stop the render
+                // that it is meant to protect: it is retried at the next interval.
+                try {
+                    film.save(opt_.checkpointPath, stateHeader());
+                    rs.checkpointError.clear();
+                } catch (const Error& e) {
+                    rs.checkpointError = e.what();
+                }
                 lastCheckpoint = Clock::now();
             }
         }
     }
     progress.finish();
-    if (checkpoints) lastComplete->save(opt_.checkpointPath, stateHeader());
+    if (checkpoints) {  // the final state: rescued to a fallback path if its own write fails
+        try {
+            writeWithFallback(opt_.checkpointPath, [&](const std::string& path) { lastComplete->save(path, stateHeader()); });
+            rs.checkpointError.clear();
+        } catch (const Error& e) {
+            rs.checkpointError = e.what();
+        }
+    }
 
     for (const ThreadState& ts : states) {
         rs.rays += ts.stats.rays;

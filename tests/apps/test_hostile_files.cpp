@@ -141,6 +141,30 @@ TEST(HostileFiles, AFailedFinalWriteIsRescuedToAPathTheErrorNames) {
     EXPECT_EQ(rescuedFiles, 1);
 }
 
+// A checkpoint that cannot be written where asked loses nothing either: the render goes on, the
+// image is written, and the final film state goes to a fallback path that the error names and from
+// which the render resumes.
+TEST(HostileFiles, AFailedCheckpointWriteIsRescuedAndTheImageStillWritten) {
+    const std::string work = path("rescue_checkpoint");
+    fs::remove_all(work);
+    fs::create_directories(work + "/out");
+    const std::string out = work + "/out/image.exr", ckpt = work + "/out/state.ckpt";
+    const std::string cmd = appPath("render") + " " + sourcePath("scenes/default.xml") + " -D res=16 --quiet --no-png -o " + out +
+                            " --checkpoint " + ckpt;
+    const RunResult r = runCommand("cd " + work + " && IRIS_FAULT_UNWRITABLE=" + ckpt + " " + cmd + " --spp 2", kHangSeconds);
+    EXPECT_EQ(r.exitCode, 1) << r.stderrText;
+    EXPECT_EQ(readImage(out).width, 16);  // the image is where it was asked
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.stderrText, m, std::regex("--checkpoint " + ckpt + ": .*written to (\\S+) instead"))) << r.stderrText;
+    const std::string rescued = m[1];
+    EXPECT_FALSE(fs::exists(ckpt));
+    // The rescued state is a real checkpoint: the render resumes from it to 4 samples.
+    const RunResult resumed = runCommand("cd " + work + " && " + appPath("render") + " " + sourcePath("scenes/default.xml") +
+                                             " -D res=16 --quiet --no-png -o " + out + " --checkpoint " + rescued + " --resume --spp 4",
+                                         kHangSeconds);
+    EXPECT_EQ(resumed.exitCode, 0) << resumed.stderrText;
+}
+
 // Item 5: --memory-limit bounds a scene of many spheres, from the size of its XML before it is
 // parsed (10^5 spheres here, 13 MB of XML; 10^6 behave alike at ten times the size), and the same
 // scene renders under a limit it fits.
