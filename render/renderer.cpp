@@ -19,6 +19,7 @@
 #include "render/integrator.h"
 #include "render/samplers/sampler_description.h"
 #include "spectral/xyz.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -124,7 +125,7 @@ std::string Renderer::settingsKey() const {
                   ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
-                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : "path",
+                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : kDefaultIntegrator,
                   ";maxdepth=", integrator ? integrator->maxDepth() : -1, ";scene_hash=", opt_.sceneHash,
                   ";first_sample=", opt_.firstSample, samplerKey());
 }
@@ -150,8 +151,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     const CameraDescription& camera = scene_.description().camera;
     if (!camera.sensor) fail("the scene has no sensor");
     if (film.width() != camera.width || film.height() != camera.height) fail("film and camera sizes differ");
-    const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter("gaussian");
-    const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator("path");
+    const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter(kDefaultFilter);
+    const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator(kDefaultIntegrator);
     if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (RGB-mode channels are not wavelength samples)");
     if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
         fail("the spectral film must have the film's size and start empty");

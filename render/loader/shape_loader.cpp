@@ -75,8 +75,8 @@ void attachVolumeLight(const Properties& p, const ShapeChildren& c) {
     if (!c.interior)
         failAt(c.emitter->location(), "a volumelight needs a shape with an interior medium, which it makes emit");
     if (c.interior->tag() != "medium") failAt(p.locationOf("interior"), "parameter 'interior' must be a <medium>");
-    mediumFor(*c.interior);
-    std::static_pointer_cast<Medium>(c.interior->instance)->setEmission(readVolumeLight(*c.emitter), c.emitter->location());
+    // The cache holds the medium itself (mutable while the scene loads), mediumFor a const view of it.
+    std::const_pointer_cast<Medium>(mediumFor(*c.interior))->setEmission(readVolumeLight(*c.emitter), c.emitter->location());
 }
 
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
@@ -112,17 +112,11 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
 }  // namespace
 
 MediumPtr mediumFor(const Properties& medium) {
-    if (medium.instance) return std::static_pointer_cast<const Medium>(medium.instance);
-    MediumPtr m = MediumRegistry::instance().create(medium);
-    medium.instance = std::const_pointer_cast<Medium>(m);
-    return m;
+    return cachedObject<Medium>(medium, [&] { return std::const_pointer_cast<Medium>(MediumRegistry::instance().create(medium)); });
 }
 
 MaterialPtr materialFor(const Properties& bsdf) {
-    if (bsdf.instance) return std::static_pointer_cast<const Material>(bsdf.instance);
-    MaterialPtr m = MaterialRegistry::instance().create(bsdf);
-    bsdf.instance = std::const_pointer_cast<Material>(m);
-    return m;
+    return cachedObject<Material>(bsdf, [&] { return std::const_pointer_cast<Material>(MaterialRegistry::instance().create(bsdf)); });
 }
 
 ShapeDescription loadShape(const Properties& p) {

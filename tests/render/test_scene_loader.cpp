@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "render/loader/scene_loader.h"
 #include "core/xml/xml_parser.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "core/registry.h"
 #include "core/source_tree.h"
