@@ -357,7 +357,8 @@ int main(int argc, char** argv) {
 
     try {
         const ColorManager colors(ocioConfig);
-        if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
+        if (!colors.hasColorSpace(outputSpace))  // a usage error, refused before any work like the others
+            usageError(strCat("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath()));
 
         memoryLimit();  // an invalid IRIS_MEMORY_LIMIT stops here, before the scene is read
         raiseAtStartIfAsked();

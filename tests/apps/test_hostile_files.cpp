@@ -113,6 +113,8 @@ TEST(HostileFiles, BadOutputPathsAndUsageAreRefusedBeforeTheSceneLoads) {
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --checkpoint /nonexistent/c.ckpt"), 2,
                   "--checkpoint /nonexistent/c.ckpt: the folder /nonexistent does not exist");
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 0"), 2, "--spp 0 needs --time-limit");
+    expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 1 --output-space no_such_space"), 2,
+                  "--output-space: colour space 'no_such_space' is not in");
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 1"), 1, "no_such_scene.xml: cannot open scene file: file not found");
 }
 
