@@ -32,6 +32,7 @@
 #include "core/io/oiio_loader.h"
 #include "core/io/png_header_check.h"
 #include "core/io/png_writer.h"
+#include "core/io/webp_header_check.h"
 
 namespace iris {
 
@@ -147,9 +148,9 @@ namespace {
 constexpr uint64_t kSamplesPerFileByte = 2048;
 constexpr uint64_t kSmallImageSamples = uint64_t(1) << 26;
 
-/// The image's size from its header, checked against the pixel limit, the file's size and the
-/// memory budget (charged) before the pixels are allocated.
-void checkSize(const std::string& path, long long w, long long h, long long channels, uint64_t fileBytes) {
+/// The image's size from its header, checked against the pixel limit and the file's size. Returns
+/// the number of samples.
+uint64_t checkSizeLimits(const std::string& path, long long w, long long h, long long channels, uint64_t fileBytes) {
     if (w <= 0 || h <= 0 || channels <= 0) fail(path, ": unsupported image size ", w, "x", h, "x", channels);
     // Each factor first, so that the product cannot overflow.
     if (w > (long long)kMaxPixels || h > (long long)kMaxPixels || w * h > (long long)kMaxPixels)
@@ -160,6 +161,12 @@ void checkSize(const std::string& path, long long w, long long h, long long chan
         fail(path, ": header claims ", w, "x", h, "x", channels, " samples (", formatBytes(samples * sizeof(float)),
              " as floats), more than a ", fileBytes, "-byte file can hold (at most ", kSamplesPerFileByte,
              " samples per byte beyond the first 2^26)");
+    return samples;
+}
+
+/// checkSizeLimits, then the memory budget (charged) before the pixels are allocated.
+void checkSize(const std::string& path, long long w, long long h, long long channels, uint64_t fileBytes) {
+    const uint64_t samples = checkSizeLimits(path, w, h, channels, fileBytes);
     chargeMemory(samples * sizeof(float), strCat(path, ": image of ", w, "x", h, "x", channels, " floats"));
 }
 
@@ -257,6 +264,9 @@ bool readExrDirect(const std::string& path, uint64_t fileBytes, Image& img) {
 /// Read any image through OpenImageIO (the module).
 Image readThroughModule(const std::string& path, uint64_t fileBytes, ImageFileInfo* info) {
     checkPngChunkLengths(path);  // before libpng allocates what a chunk claims
+    // Before OpenImageIO's WebP reader decodes (and allocates) the whole canvas inside open():
+    // 4 channels of 8 bits, checked as floats like every other image (OpenImageIO converts them).
+    if (const auto webp = webpCanvas(path)) checkSizeLimits(path, webp->width, webp->height, 4, fileBytes);
     const OiioModule& oiio = oiioModule(path, "read this image");
     char err[1024] = "";
     iris_oiio_info spec{};
