@@ -34,7 +34,6 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     const std::string hair = loadError("<shape type=\"sphere\">\n<bsdf type=\"hair\"/></shape>\n");
     EXPECT_TRUE(has(hair, "<string>:3: unknown bsdf type 'hair'")) << hair;
     EXPECT_TRUE(has(hair, "roughconductor")) << hair;
-    EXPECT_TRUE(has(loadError("<integrator type=\"bdpt\"/>\n"), "use 'path'"));
     EXPECT_TRUE(has(loadError("<emitter type=\"sun\"/>\n"), "use 'directional'"));
     EXPECT_TRUE(has(loadError("<shape type=\"linearcurve\"/>\n"), "convert the curves to a mesh"));
     EXPECT_TRUE(has(loadError("<sensor type=\"thinlens\"/>\n"), "use 'perspective'"));

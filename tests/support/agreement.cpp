@@ -37,16 +37,20 @@ BlockStats blockStats(const std::vector<float>& mean, const std::vector<float>& 
 }  // namespace
 
 Agreement compareFilms(const Film& test, const Film& ref, int block, double alpha) {
-    const int W = test.width(), H = test.height();
+    return compareFilms(test, ref, PixelRect{0, 0, test.width(), test.height()}, block, alpha);
+}
+
+Agreement compareFilms(const Film& test, const Film& ref, const PixelRect& rect, int block, double alpha) {
+    const int W = test.width();
     const std::vector<float> mt = test.meanImage(), vt = test.varianceOfMeanImage();
     const std::vector<float> mr = ref.meanImage(), vr = ref.varianceOfMeanImage();
     struct Region {
         int x, y, w, h;
     };
     std::vector<Region> regions;
-    for (int y = 0; y + block <= H; y += block)
-        for (int x = 0; x + block <= W; x += block) regions.push_back({x, y, block, block});
-    regions.push_back({0, 0, W, H});
+    for (int y = rect.y0; y + block <= rect.y1; y += block)
+        for (int x = rect.x0; x + block <= rect.x1; x += block) regions.push_back({x, y, block, block});
+    regions.push_back({rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0});
     Agreement a;
     a.tests = int(regions.size()) * 3;
     a.threshold = normalQuantileTwoSided(1.0 - std::pow(1.0 - alpha, 1.0 / a.tests));
