@@ -41,30 +41,16 @@ SampledSpectrum PTracerIntegrator::sample(const Scene& scene, const Ray&, Sample
     return SampledSpectrum(wl.size());
 }
 
-// A point on an area emitter (or a direction of an infinite one, seen from the pinhole) connected
-// to the sensor: Le |cos θ_light| W / (pmf · pdf) (Mitsuba 3 ptracer.cpp sample_visible_emitters;
-// the sensor's weight W includes 1/d², so a direction at unit distance gives the importance per
-// solid angle). Delta lights cannot be seen.
+// A point on an area emitter connected to the sensor, Le |cos θ_light| W / (pmf · pdfPos) (Mitsuba 3
+// ptracer.cpp sample_visible_emitters). Delta lights cannot be seen.
 void PTracerIntegrator::splatVisibleEmitter(const Scene& scene, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                                             PathStats& stats, SplatFilm& splats) const {
     const float uLight = sampler.get1D();
     const vec2 uPos = sampler.get2D(), uDir = sampler.get2D();
     const LightChoice choice = chooseLight(scene, uLight);
     if (!choice.light || choice.light->isDelta()) return;
+    if (choice.light->type() == Light::Type::Infinite) return splatVisibleInfinite(scene, *choice.light, choice.pmf, uPos, wl, arena, stats, splats);
     const Sensor& sensor = *scene.description().camera.sensor;
-    if (choice.light->type() == Light::Type::Infinite) {
-        const std::optional<vec3> pin = sensor.pinhole();
-        if (!pin) return;  // an orthographic sensor sees one direction: no density can hit it
-        const std::optional<LightSample> ls = choice.light->sampleLi(*pin, uPos, wl);
-        if (!ls || !(ls->pdf > 0)) return;
-        const std::optional<SensorSample> s = sensor.sampleWi(*pin + ls->wi);
-        if (!s) return;
-        const float far = glm::length(*pin - scene.bounds().center) + 2.0f * scene.bounds().radius;
-        const SensorSample toFar{*pin, s->wi, far, s->filmPos, s->weight};
-        splatIfVisible(scene, *pin + far * ls->wi, vec3(0.0f), toFar, ls->L * (s->weight / (choice.pmf * ls->pdf)), 1, maxDepth_,
-                       wl, arena, stats, splats);
-        return;
-    }
     const std::optional<LightEmission> e = choice.light->sampleLe(uPos, uDir, wl, scene.bounds());
     if (!e) return;
     const std::optional<SensorSample> s = sensor.sampleWi(e->at.p);
@@ -73,6 +59,29 @@ void PTracerIntegrator::splatVisibleEmitter(const Scene& scene, SampledWavelengt
     const float cosLight = std::abs(glm::dot(e->n, s->wi));
     splatIfVisible(scene, e->at.p, e->n, *s, Le * (cosLight * s->weight / (choice.pmf * e->pdfPos)), 1, maxDepth_, wl, arena, stats,
                    splats);
+}
+
+// An infinite light seen directly: a direction drawn from the sensor (a film position uniform over
+// the image and the filter's margin around it), not from the light as Mitsuba 3 does — its
+// directions fall in the view with the view's share of the sphere only, which leaves each pixel a
+// handful of hits in hundreds of passes. Le W / (pmf · pdf), pdf = the pinhole's density of that
+// direction over the enlarged film (render/sensors/perspective.cpp). Sensors without a pinhole see
+// one direction: no density can reach it, and nothing is splatted.
+void PTracerIntegrator::splatVisibleInfinite(const Scene& scene, const Light& light, float pmf, const vec2& u, SampledWavelengths& wl,
+                                             Arena& arena, PathStats& stats, SplatFilm& splats) const {
+    const Sensor& sensor = *scene.description().camera.sensor;
+    const std::optional<vec3> pin = sensor.pinhole();
+    if (!pin) return;
+    const float m = splats.margin(), w = float(splats.width()), h = float(splats.height());
+    const vec2 filmPos(-m + u.x * (w + 2 * m), -m + u.y * (h + 2 * m));
+    const vec3 d = glm::normalize(sensor.generateRay(filmPos).d);
+    const std::optional<SensorSample> s = sensor.sampleWi(*pin + d);
+    if (!s) return;
+    const float pdf = sensor.pdfDirection(d) * (w * h) / ((w + 2 * m) * (h + 2 * m));
+    const SampledSpectrum Le = light.Le(TextureQuery{}, vec3(0.0f), d, wl);
+    const float far = glm::length(*pin - scene.bounds().center) + 2.0f * scene.bounds().radius;
+    const SensorSample toFar{*pin, s->wi, far, s->filmPos, s->weight};
+    splatIfVisible(scene, *pin + far * d, vec3(0.0f), toFar, Le * (s->weight / (pmf * pdf)), 1, maxDepth_, wl, arena, stats, splats);
 }
 
 // The light path (Mitsuba 3 ptracer.cpp trace_light_ray; Veach 1997 §10.2): at every vertex with a

@@ -3,7 +3,9 @@
 // non-delta BSDF is connected to the sensor, its contribution splatted where it lands on the film
 // (render/splat_film.h). One light path per pixel sample: a pass of W × H light paths, each splat
 // scaled by 1/(W H). Directly visible emitters (unless hide_emitters) are sampled on the emitter and
-// connected to the sensor, as Mitsuba 3 does (sample_visible_emitters); delta lights cannot be seen.
+// connected to the sensor, as Mitsuba 3 does (sample_visible_emitters), except infinite lights,
+// whose directions are drawn from the sensor's view (see splatVisibleInfinite); delta lights cannot
+// be seen.
 //
 // Differences from Mitsuba 3, each for agreement with iris's `path`: the connection to the sensor
 // crosses pass-through surfaces (mask, null, thindielectric) with their weight, and counts each as a
@@ -41,6 +43,8 @@ public:
 private:
     void splatVisibleEmitter(const Scene& scene, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
                              SplatFilm& splats) const;
+    void splatVisibleInfinite(const Scene& scene, const Light& light, float pmf, const vec2& u, SampledWavelengths& wl, Arena& arena,
+                              PathStats& stats, SplatFilm& splats) const;
     void traceLightPath(const Scene& scene, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
                         SplatFilm& splats) const;
 

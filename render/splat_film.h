@@ -37,6 +37,8 @@ public:
     SplatFilm(int width, int height, const ReconstructionFilter& filter, bool rgbMode);
     int width() const { return width_; }
     int height() const { return height_; }
+    /// The film positions that reach a pixel: the image and a margin of the filter's radius.
+    float margin() const { return filter_.radius(); }
 
     /// A light path's contribution arriving at film position filmPos (pixels), spread by the filter
     /// and scaled by 1/(width × height). Thread-safe. Invalid values (NaN, ±Inf, negative) are
