@@ -36,7 +36,7 @@
 // cross surfaces whose BSDF has a pass-through lobe with its weight (BSDF::nullTransmission, Mitsuba
 // 3's eval_null_transmission in sample_emitter); any other surface blocks them. Mitsuba 0.6 differs:
 // its volpath counts a null crossing as an interaction on the path and on shadow rays
-// (docs/media.md). Media do not emit.
+// (docs/media.md). A medium with a volumelight emits at every collision (addMediumEmission).
 #include "core/error.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
@@ -146,6 +146,19 @@ private:
     /// light at si.
     void addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
                      const SampledWavelengths& wl) const;
+    /// A volumelight's emission at a collision at p (any kind: real or null), sampled with density
+    /// T_maj σ_maj in lane h: β T_maj j / (T_maj[h] σ_maj[h]), weighted over the lanes as the
+    /// unidirectional strategy (pbrt-v4 §14.2.2, emission at every majorant collision; media/
+    /// volume_light.h for j). Volume emitters are reached only this way (no next-event estimation).
+    void addMediumEmission(const vec3& p, const MajorantSegment& seg, const SampledSpectrum& tm, int h, PathState& ps,
+                           const SampledWavelengths& wl) const {
+        const Volume* j = ps.medium->emission();
+        if (!j || (params_.hideEmitters && ps.depth == 0)) return;
+        const float pdf = tm[h] * seg.sigmaMaj[h];
+        const SampledSpectrum rE = ps.rU * tm * seg.sigmaMaj / pdf;
+        if (!(pdf > 0) || rE.isBlack()) return;
+        ps.L += ps.beta * tm * j->eval(p, wl) / pdf / reduce(rE, h, wl);
+    }
     /// Russian roulette after a real scattering event (pbrt-v4 §14.2.3), on the MIS-weighted
     /// throughput with radiance scaling undone; u is drawn at every event. False: the path ends.
     bool survivesRoulette(PathState& ps, int h, const SampledWavelengths& wl, float u) const {
@@ -221,6 +234,7 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
             const float sMaj = seg.sigmaMaj[h];
             const vec3 p = ray.at(t);
             const MediumCoefficients c = ps.medium->coefficients(p, wl);
+            addMediumEmission(p, seg, tm, h, ps, wl);
             if (rng.uniform() < c.sigmaT[h] / sMaj) {
                 // A real collision, pdf T_maj σ_t in lane h: scattering with the path's weight times
                 // T_maj σ_s (the albedo; Mitsuba 3 volpath.cpp, weight_scatter · σ_s).

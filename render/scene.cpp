@@ -14,6 +14,7 @@
 #include "core/sphere_intersection.h"
 #include "render/instance_transform.h"
 #include "render/scene_memory.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -207,7 +208,7 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
     scene_ = scene;
 
     {
-        Properties p("bsdf", "diffuse", SourceLocation{"<default material>", 0});
+        Properties p("bsdf", kDefaultMaterial, SourceLocation{"<default material>", 0});
         defaultMaterial_ = MaterialRegistry::instance().create(p);
     }
 

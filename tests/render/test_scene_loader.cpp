@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "render/loader/scene_loader.h"
 #include "core/xml/xml_parser.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "core/registry.h"
 #include "core/source_tree.h"
@@ -232,7 +233,7 @@ TEST(SceneLoader, ValuesAndSpectra) {
     EXPECT_NEAR(s.shapes[0].emission->eval(550.0f), 0.5f, 1e-6f);
     EXPECT_GT(s.shapes[1].emission->eval(550.0f), 0.0f);
     {
-        // A float radiance becomes whatever Properties::getSpectrum makes of a float illuminant.
+        // A float radiance becomes whatever getSpectrum (spectral/spectrum_params.h) makes of a float illuminant.
         Properties ref("emitter", "area", SourceLocation{"ref.xml", 1});
         ref.set("radiance", 2.5f, SourceLocation{"ref.xml", 1});
         const SpectrumPtr expected = getSpectrum(ref, "radiance", SpectrumKind::Illuminant);
@@ -350,8 +351,8 @@ TEST(SceneLoader, ErrorsNameFileLineAndProblem) {
                     4, {"unknown parameter 'roughness'", "bsdf 'diffuse'"});
     expectLoadError("e_rfilter.xml", scene("<sensor type=\"perspective\"><film type=\"hdrfilm\">\n<rfilter type=\"sinc\"/></film></sensor>\n"), 3,
                     {"unknown rfilter type 'sinc' (supported: ", "box, ", "gaussian"});
-    expectLoadError("e_integrator.xml", scene("\n<integrator type=\"bdpt\"/>\n"), 3,
-                    {"unknown integrator type 'bdpt' (supported: ", "direct, ", "path"});
+    expectLoadError("e_integrator.xml", scene("\n<integrator type=\"sppm\"/>\n"), 3,
+                    {"unknown integrator type 'sppm' (supported: ", "bdpt, ", "direct, ", "path, ", "ptracer"});
     expectLoadError("e_shape.xml", scene("\n<shape type=\"torus\"/>\n"), 3,
                     {"unknown shape type 'torus' (supported: ", "cube, ", "sphere"});
     expectLoadError("e_sensor.xml", scene("\n<sensor type=\"fisheye\"/>\n"), 3,
