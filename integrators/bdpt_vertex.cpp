@@ -98,11 +98,11 @@ float lightOriginPdf(const Scene& scene, const BDPTVertex& v, const BDPTVertex& 
     const vec3 w = glm::normalize(d);
     // Every infinite light along −w, as the escaped ray's emission sums them.
     if (v.isInfiniteLight()) return infiniteLightDensity(scene, -w);
-    return emitterOf(v).pdfLe(v.p, v.ng, w, scene.bounds()).x / float(scene.lights().size());  // chooseLight: uniform
+    return emitterOf(v).pdfLe(v.p, v.ng, w, scene.bounds()).x * lightChoicePmf(scene);
 }
 
 float infiniteLightDensity(const Scene& scene, const vec3& wi) {
-    const float pmf = 1.0f / float(scene.lights().size());
+    const float pmf = lightChoicePmf(scene);
     float pdf = 0.0f;
     for (const Light* l : scene.infiniteLights()) pdf += pmf * l->pdfLi(vec3(0.0f), wi, nullptr);
     return pdf;

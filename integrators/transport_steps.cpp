@@ -8,11 +8,11 @@ LightChoice chooseLight(const Scene& scene, float u) {
     const auto& lights = scene.lights();
     if (lights.empty()) return {};
     const int i = std::min(int(u * lights.size()), int(lights.size()) - 1);
-    return {lights[size_t(i)].get(), 1.0f / float(lights.size())};
+    return {lights[size_t(i)].get(), lightChoicePmf(scene)};
 }
 
 float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from, const vec3& d, const SurfaceInteraction* hit) {
-    const float pmf = scene.lights().empty() ? 0.0f : 1.0f / float(scene.lights().size());
+    const float pmf = lightChoicePmf(scene);
     return pmf * light.pdfLi(from, d, hit);
 }
 

@@ -29,6 +29,12 @@ struct LightChoice {
 /// light is nullptr when the scene has none.
 LightChoice chooseLight(const Scene& scene, float u);
 
+/// The probability with which chooseLight picks any one light: 1 / (number of lights), 0 without
+/// lights (used by the densities of MIS: next-event estimation and BDPT's light vertices).
+inline float lightChoicePmf(const Scene& scene) {
+    return scene.lights().empty() ? 0.0f : 1.0f / float(scene.lights().size());
+}
+
 /// The solid-angle density with which next-event estimation from `from` produces direction `d`
 /// towards `light`, the light's choice included; `hit` is where d reached it (area lights) or
 /// nullptr (infinite lights).
