@@ -1,7 +1,8 @@
 // Mitsuba 3's "moment" integrator: renders with the one nested integrator and asks for the
 // per-pixel first and second moments of the samples as extra image channels. The film keeps
 // per-pixel sums of values and of squared values anyway (render/film.h), so this wrapper only
-// delegates; apps/render writes the channels moment1.* and moment2.* (in the film's space) when
+// delegates (also the splats of a light-tracing integrator: the film's samples are then the
+// passes' sums, render/splat_film.h); apps/render writes the channels moment1.* and moment2.* (in the film's space) when
 // the scene's integrator is a moment integrator.
 #include "render/integrator.h"
 
@@ -17,6 +18,11 @@ public:
         return nested_->Li(scene, ray, wl, sampler, arena, stats);
     }
     bool rendersMedia() const override { return nested_->rendersMedia(); }
+    bool splats() const override { return nested_->splats(); }
+    SampledSpectrum sample(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+                           PathStats& stats, SplatFilm& splats) const override {
+        return nested_->sample(scene, ray, wl, sampler, arena, stats, splats);
+    }
 
 private:
     IntegratorPtr nested_;

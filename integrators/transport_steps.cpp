@@ -8,11 +8,11 @@ LightChoice chooseLight(const Scene& scene, float u) {
     const auto& lights = scene.lights();
     if (lights.empty()) return {};
     const int i = std::min(int(u * lights.size()), int(lights.size()) - 1);
-    return {lights[size_t(i)].get(), 1.0f / float(lights.size())};
+    return {lights[size_t(i)].get(), lightChoicePmf(scene)};
 }
 
 float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from, const vec3& d, const SurfaceInteraction* hit) {
-    const float pmf = scene.lights().empty() ? 0.0f : 1.0f / float(scene.lights().size());
+    const float pmf = lightChoicePmf(scene);
     return pmf * light.pdfLi(from, d, hit);
 }
 
@@ -56,6 +56,36 @@ std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const v
     s->f = SampledSpectrum(wl.size(), phase.eval(p, wo, s->ls.wi));
     if (s->f.isBlack()) return std::nullopt;
     return s;
+}
+
+std::optional<SampledSpectrum> crossingWeight(const SurfaceInteraction& si, const vec3& dir, const SampledWavelengths& wl,
+                                              Arena& arena) {
+    if (!si.material->transmitsShadowRays()) return std::nullopt;
+    const ShadingPoint sp = shadingPointAt(si);
+    SampledWavelengths own = wl;  // a nested dispersive BSDF may end lanes: of this query, not of the path
+    const BSDF* bsdf = si.material->getBSDF(sp, own, arena);
+    if (!bsdf) return SampledSpectrum(wl.size(), 1.0f);  // a boundary only
+    return bsdf->nullTransmission(sp.shading.toLocal(-dir));
+}
+
+std::optional<LightPathStart> startLightPath(const Scene& scene, float uLight, const vec2& uPos, const vec2& uDir,
+                                             const SampledWavelengths& wl) {
+    const LightChoice choice = chooseLight(scene, uLight);
+    if (!choice.light) return std::nullopt;
+    const std::optional<LightEmission> e = choice.light->sampleLe(uPos, uDir, wl, scene.bounds());
+    if (!e || !(e->pdfPos > 0) || !(e->pdfDir > 0) || e->L.isBlack()) return std::nullopt;
+    LightPathStart s;
+    s.light = choice.light;
+    s.pmf = choice.pmf;
+    s.emission = *e;
+    s.beta = e->weight() / choice.pmf;
+    return s;
+}
+
+float adjointShadingCorrection(const vec3& woWorld, const vec3& wiWorld, const vec3& ng, const vec3& ns) {
+    const float den = std::abs(glm::dot(woWorld, ng) * glm::dot(wiWorld, ns));
+    if (!(den > 0)) return 0.0f;
+    return std::abs(glm::dot(woWorld, ns) * glm::dot(wiWorld, ng)) / den;
 }
 
 }  // namespace iris

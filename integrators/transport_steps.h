@@ -29,6 +29,12 @@ struct LightChoice {
 /// light is nullptr when the scene has none.
 LightChoice chooseLight(const Scene& scene, float u);
 
+/// The probability with which chooseLight picks any one light: 1 / (number of lights), 0 without
+/// lights (used by the densities of MIS: next-event estimation and BDPT's light vertices).
+inline float lightChoicePmf(const Scene& scene) {
+    return scene.lights().empty() ? 0.0f : 1.0f / float(scene.lights().size());
+}
+
 /// The solid-angle density with which next-event estimation from `from` produces direction `d`
 /// towards `light`, the light's choice included; `hit` is where d reached it (area lights) or
 /// nullptr (infinite lights).
@@ -67,6 +73,32 @@ std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const v
 /// hit, or every infinite light when it escaped (hit = nullptr).
 template <typename F>
 void forEachEmission(const Scene& scene, const SurfaceInteraction* hit, const vec3& d, const SampledWavelengths& wl, F&& emitted);
+
+/// The weight a ray along `dir` keeps when it crosses surface si without scattering (Mitsuba 3
+/// volpath.cpp sample_emitter: eval_null_transmission at the hit), or nullopt when the surface blocks
+/// it (any surface without a pass-through lobe: Material::transmitsShadowRays).
+std::optional<SampledSpectrum> crossingWeight(const SurfaceInteraction& si, const vec3& dir, const SampledWavelengths& wl,
+                                              Arena& arena);
+
+/// The first ray of a light path (light tracing, BDPT): the light, chosen as next-event estimation
+/// chooses it, and its emission sample, with the throughput the path starts with,
+/// β = Le |cos θ| / (pmf · pdfPos · pdfDir) (pbrt-v4 §13.x GenerateLightSubpath, Mitsuba 3
+/// Scene::sample_emitter_ray).
+struct LightPathStart {
+    const Light* light = nullptr;
+    float pmf = 0.0f;
+    LightEmission emission;
+    SampledSpectrum beta;
+};
+std::optional<LightPathStart> startLightPath(const Scene& scene, float uLight, const vec2& uPos, const vec2& uDir,
+                                             const SampledWavelengths& wl);
+
+/// The shading-normal correction of the adjoint BSDF (Veach 1997 eq. 5.19; Mitsuba 3 ptracer.cpp):
+/// a light path that arrives at a surface from woWorld (towards the previous vertex, the light
+/// side) and leaves towards wiWorld carries f*(wo, wi) |wi·ns| times
+/// |wo·ns| |wi·ng| / (|wo·ng| |wi·ns|), so that it estimates the integral a camera path estimates
+/// with the shading normal ns (and the geometric normal ng). 0 where wo grazes the geometric surface.
+float adjointShadingCorrection(const vec3& woWorld, const vec3& wiWorld, const vec3& ng, const vec3& ns);
 
 /// Russian roulette (pbrt-v4 §13.4.4, Mitsuba 3 path.cpp): the path survives with probability
 /// q = min(0.95, m), m its largest throughput (radiance scaling by η² undone). Returns q when it

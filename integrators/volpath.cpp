@@ -67,18 +67,6 @@ const Medium* mediumAfter(const Scene& scene, const SurfaceInteraction& si, cons
     return glm::dot(d, si.ng) > 0 ? s.exterior.get() : s.interior.get();
 }
 
-/// The weight a shadow ray along `dir` keeps when it crosses surface si (Mitsuba 3 volpath.cpp
-/// sample_emitter: eval_null_transmission at the hit), or nullopt when the surface blocks it.
-std::optional<SampledSpectrum> crossingWeight(const SurfaceInteraction& si, const vec3& dir, const SampledWavelengths& wl,
-                                              Arena& arena) {
-    if (!si.material->transmitsShadowRays()) return std::nullopt;
-    const ShadingPoint sp = shadingPointAt(si);
-    SampledWavelengths own = wl;  // a nested dispersive BSDF may end lanes: of this query, not of the path
-    const BSDF* bsdf = si.material->getBSDF(sp, own, arena);
-    if (!bsdf) return SampledSpectrum(wl.size(), 1.0f);  // a boundary only
-    return bsdf->nullTransmission(sp.shading.toLocal(-dir));
-}
-
 /// Per-path random numbers for the variable number of tracking steps: a generator seeded from two
 /// sampler values, so that the sampler's dimensions stay aligned whatever happens (pbrt-v4 §14.2.2).
 Pcg32 trackingRng(Sampler& sampler) {

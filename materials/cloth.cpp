@@ -33,7 +33,10 @@ public:
         : base_(base), sheen_(sheen), subsurface_(subsurface), hasSubsurface_(hasSubsurface), alpha_(alpha),
           wrap_(wrap), neubelt_(neubelt) {}
 
-    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        // The wrapped diffuse is not reciprocal: importance transport takes the adjoint
+        // f*(wo, wi) = f(wi, wo) (Veach 1997 eq. 3.21).
+        if (mode == TransportMode::Importance) return eval(wi, wo, TransportMode::Radiance);
         if (wo.z <= 0 || wi.z < cloth::kMinCosTheta) return SampledSpectrum(base_.size());
         const float cosO = wo.z, cosI = wi.z;
         // Wrapped diffuse divided by cosθi (the integrator multiplies by cosθi again).

@@ -36,7 +36,12 @@ public:
             s.wi = refractLocal(wo, fr.cosThetaT, fr.etaTI);
             if (s.wi.z == 0) return std::nullopt;
             s.pdf = 1.0f - fr.R;
-            s.f = (1.0f - R) * t_ / std::abs(s.wi.z);
+            // Importance mode is the adjoint: the reverse radiance sample's coefficient over η²
+            // (Veach 1997 eq. 5.14), so no 1/η² and each channel's Fresnel factor seen from wi
+            // (equal to wo's where a channel's η is the one that bent the ray).
+            const SampledSpectrum T =
+                1.0f - (mode == TransportMode::Radiance ? R : fresnelDielectricAdjoint(wo.z, s.wi.z, eta_, etaDir_));
+            s.f = T * t_ / std::abs(s.wi.z);
             if (mode == TransportMode::Radiance) s.f *= sqr(fr.etaTI);  // radiance compression 1/η²
             s.flags = kBSDFTransmission | kBSDFSpecular;
             s.eta = fr.etaIT;

@@ -57,6 +57,18 @@ inline FresnelDielectricResult fresnelDielectricFull(float cosThetaI, float eta)
 /// Reflectance only (see fresnelDielectricFull).
 inline float fresnelDielectric(float cosThetaI, float eta) { return fresnelDielectricFull(cosThetaI, eta).R; }
 
+/// The per-channel Fresnel reflectance in the adjoint of a refraction whose direction one index
+/// etaDir decided (wo's side at cosO, wi's at cosI, both against the same normal): a channel of
+/// that index keeps its value from wo's side (equal to wi's, and to what the lobe choice used); a
+/// channel of another index takes it from wi's side, as the radiance BSDF of the reverse direction
+/// does (importance transport f*(wo, wi) = f(wi, wo), Veach 1997 eq. 3.21).
+template <typename Spectrum>
+Spectrum fresnelDielectricAdjoint(float cosO, float cosI, const Spectrum& eta, float etaDir) {
+    Spectrum F(eta.size());
+    for (int k = 0; k < eta.size(); ++k) F[k] = fresnelDielectric(eta[k] == etaDir ? cosO : cosI, eta[k]);
+    return F;
+}
+
 /// The thesis' form, thesis 000 eqs. 2.8–2.9 (Walter et al. 2007 eq. 22, Cook & Torrance 1982):
 ///   F = ½ (g−c)²/(g+c)² · (1 + (c(g+c)−1)²/(c(g−c)−1)²), g = sqrt(η_t²/η_i² − 1 + c²), c = |cosθi|.
 /// Only for incidence from the outside with relative index eta; g imaginary means TIR (F = 1).

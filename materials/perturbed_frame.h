@@ -86,6 +86,9 @@ public:
     }
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        // Not reciprocal (the frame is chosen for wo, the shadowing and the cosine rescaling are of
+        // wi): importance transport takes the adjoint f*(wo, wi) = f(wi, wo) (Veach 1997 eq. 3.21).
+        if (mode == TransportMode::Importance) return eval(wi, wo, TransportMode::Radiance);
         const int k = choose(wo);
         const vec3 wiP = frame_[k].toLocal(wi);
         if (!(wi.z * wiP.z > 0)) return SampledSpectrum(nWl_);
@@ -103,7 +106,21 @@ public:
         if (!s) return std::nullopt;
         const vec3 wi = frame_[k].toWorld(s->wi);
         if (!(wi.z * s->wi.z > 0)) return std::nullopt;  // Mitsuba: pdf and weight 0
-        s->f *= factor(k, wi, s->wi);
+        if (mode == TransportMode::Importance) {
+            // The adjoint f*(wo, wi) = f(wi, wo) (Veach 1997 eq. 3.21): the frame wi would choose
+            // and the shadowing of wo. A delta lobe keeps the nested adjoint's coefficient, rescaled
+            // to the unperturbed cosine, where wi chooses wo's frame and wo lies on one side of both
+            // normals (else the reverse radiance sample does not reach wo and f(wi, wo) = 0).
+            if (!s->isSpecular()) {
+                s->f = eval(wo, wi, mode);
+            } else {
+                if (choose(wi) != k || !(wo.z * frame_[k].toLocal(wo).z > 0)) return std::nullopt;
+                const float g = opt_.useShadowingFunction ? shadowTerminator(frame_[k].n, wo) : 1.0f;
+                s->f *= g * std::abs(s->wi.z) / std::abs(wi.z);
+            }
+        } else {
+            s->f *= factor(k, wi, s->wi);
+        }
         s->wi = wi;
         return s;
     }

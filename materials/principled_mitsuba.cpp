@@ -14,7 +14,7 @@
 //                   + (1 − m) spec_tint Schlick(Ctint R0(η)),  R0(η) = ((η − 1)/(η + 1))²
 //     F_p (back)  = bsdf F_dielectric(η)
 //   specular transmission sqrt(base_color) bsdf (1 − F) D G |v·h||l·h| / (|cosθv cosθl| (v·h + η' l·h)²)
-//                   (Walter et al. 2007 eq. 21; × η'² for importance transport)
+//                   (Walter et al. 2007 eq. 21; importance transport: the adjoint f(l, v), Veach eq. 3.21)
 //   clearcoat (front)    0.25 clearcoat F_cc D_GTR1 G_cc   — no 1/(4 cosθv cosθl) (Mitsuba)
 //   diffuse (front)      brdf base_color/π mix(f_d + f_retro, f_ss, flatness)   ([B15] eqs. 4–5)
 //   sheen (front, brdf > 0) sheen (1 − m) F_H mix(1, Ctint, sheen_tint)
@@ -89,6 +89,9 @@ public:
     }
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        // The adjoint f*(wo, wi) = f(wi, wo) (Veach 1997 eq. 3.21; the front/back Fresnel terms
+        // make the lobes non-reciprocal, so no per-lobe factor would do).
+        if (mode == TransportMode::Importance) return eval(wi, wo, TransportMode::Radiance);
         const int n = base_.size();
         SampledSpectrum f(n);
         Geometry g;
@@ -110,8 +113,7 @@ public:
         }
         if (bsdf_ > 0 && g.refract && g.compatRefract && g.F < 1) {
             // Walter et al. 2007 eq. 21 with the index on v's side 1 and η' = etaPath on l's side.
-            float t = (1.0f - g.F) * D * G * std::abs(g.dv * g.dl) / (cv * cl * sqr(g.dv + g.etaPath * g.dl));
-            if (mode == TransportMode::Importance) t *= sqr(g.etaPath);
+            const float t = (1.0f - g.F) * D * G * std::abs(g.dv * g.dl) / (cv * cl * sqr(g.dv + g.etaPath * g.dl));
             f += sqrtBase_ * (bsdf_ * t);
         }
         if (!(g.front && g.reflect)) return f;
@@ -293,7 +295,10 @@ public:
         if (p.specTint > 0) tintF0_ = ctint_ * schlickF0FromEta(p.eta);
     }
 
-    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
+    SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        // Not reciprocal (F of the front side, l mirrored for the half vector): importance transport
+        // takes the adjoint f*(wo, wi) = f(wi, wo) (Veach 1997 eq. 3.21).
+        if (mode == TransportMode::Importance) return eval(wi, wo, TransportMode::Radiance);
         const int n = base_.size();
         SampledSpectrum f(n);
         if (wo.z == 0 || wi.z == 0) return f;

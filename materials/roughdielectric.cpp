@@ -4,7 +4,8 @@
 //   f_t = |wi·m||wo·m| / (|cosθi||cosθo|) · η_o² (1 − F) G D / (η_i (wi·m) + η_o (wo·m))²
 //                                                          (Walter eq. 21, thesis eqs. 2.15–2.16)
 // with the generalised half vector m ∝ −(η_i wi + η_o wo) (Walter eq. 16); here η_o is the index
-// on the viewer's (wo) side, which makes f_t the radiance BTDF; Importance mode uses η_i² instead.
+// on the viewer's (wo) side, which makes f_t the radiance BTDF; Importance mode is its adjoint,
+// f(wi, wo): η_i² instead of η_o², and per-channel Fresnel factors seen from wi (materials/fresnel.h).
 // Sampling (Walter §5.3, thesis eqs. 2.19–2.22): m from the (visible) normal distribution, then
 // reflection with probability F(wo·m) else refraction; pdf = pm(m) · {F/(4|wo·m|) ,
 // (1−F) η_i²|wi·m| / (η_o (wo·m) + η_i (wi·m))²} (Walter eqs. 14, 17).
@@ -38,10 +39,12 @@ public:
         const float G = d_.G(wi, wo, g.m);
         const SampledSpectrum F = fresnelDielectric(g.dotO, eta_);
         if (g.reflect) return F * r_ * (D * G / (4.0f * std::abs(wi.z * wo.z)));
-        // Walter eq. 21 with η_o (viewer side) = 1 and η_i = etaW relative to it.
+        // Walter eq. 21 with η_o (viewer side) = 1 and η_i = etaW relative to it; its adjoint
+        // f(wi, wo) has η_i² instead of η_o² and each channel's Fresnel factor seen from wi.
         float v = D * G * std::abs(g.dotO * g.dotI) / (std::abs(wi.z * wo.z) * sqr(g.dotO + g.etaW * g.dotI));
-        if (mode == TransportMode::Importance) v *= sqr(g.etaW);
-        return (1.0f - F) * t_ * v;
+        if (mode == TransportMode::Radiance) return (1.0f - F) * t_ * v;
+        v *= sqr(g.etaW);
+        return (1.0f - fresnelDielectricAdjoint(g.dotO, g.dotI, eta_, etaDir_)) * t_ * v;
     }
 
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {

@@ -14,6 +14,8 @@
 
 namespace iris {
 
+class SplatFilm;
+
 /// Counters a render thread accumulates (summed by the renderer).
 struct PathStats {
     uint64_t rays = 0;         // closest-hit and shadow rays traced
@@ -32,6 +34,16 @@ public:
     /// True for integrators that render participating media (volpath, volpathmis); the loader
     /// refuses a scene with media and an integrator that would ignore them.
     virtual bool rendersMedia() const { return false; }
+    /// True for light-tracing integrators (ptracer, bdpt), which also add contributions to other
+    /// film positions than the camera sample's: the renderer then keeps a SplatFilm per pass and
+    /// calls sample() instead of Li() (render/splat_film.h).
+    virtual bool splats() const { return false; }
+    /// One camera sample of a splatting integrator: returns the estimate at the camera ray's own
+    /// film position and gives the others to `splats`.
+    virtual SampledSpectrum sample(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+                                   PathStats& stats, SplatFilm& splats) const {
+        return (void)splats, Li(scene, ray, wl, sampler, arena, stats);
+    }
     int maxDepth() const { return maxDepth_; }
 
 private:

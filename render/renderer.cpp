@@ -18,6 +18,7 @@
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
 #include "render/samplers/sampler_description.h"
+#include "render/splat_film.h"
 #include "spectral/xyz.h"
 #include "render/scene_defaults.h"
 
@@ -154,6 +155,10 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter(kDefaultFilter);
     const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator(kDefaultIntegrator);
     if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (RGB-mode channels are not wavelength samples)");
+    if (spectral && integrator->splats()) fail("a spectral image (--spectral-output) is not available with the '", integrator->type(), "' integrator");
+    // Light tracing: the splats of each pass, added to the film when the pass is complete.
+    std::optional<SplatFilm> splats;
+    if (integrator->splats()) splats.emplace(film.width(), film.height(), *filter, opt_.rgbMode);
     if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
         fail("the spectral film must have the film's size and start empty");
 
@@ -225,7 +230,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         const FilterSample fs = filter->sample(sampler.get2D());
                         const Ray ray = camera.sensor->generateRay(vec2(x + 0.5f, y + 0.5f) + fs.offset);
                         ts.arena.reset();
-                        SampledSpectrum L = integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
+                        SampledSpectrum L = splats ? integrator->sample(scene_, ray, wl, sampler, ts.arena, ts.stats, *splats)
+                                                   : integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
                         vec3 value;
                         if (opt_.rgbMode)
                             value = vec3(L[0], L[1], L[2]);
@@ -235,6 +241,10 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         if (!valid) {
                             ++ts.invalid;
                             value = vec3(0.0f);
+                        }
+                        if (splats) {
+                            splats->add(x, y, fs.weight * value);
+                            continue;
                         }
                         film.addSample(x, y, fs.weight == 1.0f ? value : fs.weight * value);
                         if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
@@ -252,7 +262,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         });
         forkJoin.join();
         passSeconds = std::chrono::duration<double>(Clock::now() - passStart).count();
-        if (tilesDone.load() < nTiles) break;  // stopped mid-pass
+        if (tilesDone.load() < nTiles) break;  // stopped mid-pass (a splatting pass is dropped)
+        if (splats) splats->flushInto(film);
         if (checkpoints) {
             lastComplete = film;
             if (opt_.checkpointEvery > 0 && secondsSince(lastCheckpoint) >= opt_.checkpointEvery) {
@@ -283,6 +294,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         rs.paths += ts.stats.paths;
         rs.invalidSamples += ts.invalid;
     }
+    if (splats) rs.invalidSamples += splats->invalidSplats();
     rs.seconds = secondsSince(start);
     rs.sppMin = film.minSampleCount();
     rs.sppMax = 0;

@@ -49,9 +49,9 @@ QUICK_SPP = 128
 SKIP = 77   # exit code when the shared scenes are not beside the repository (ctest SKIP_RETURN_CODE)
 
 
-def render(render_exe: Path, scene: Path, mode: str, spp: int, seed: int, out: Path):
-    """Render scene; returns (XYZ mean, XYZ variance of the mean, spp) or raises RuntimeError with
-    render's error line."""
+def render(render_exe: Path, scene: Path, mode: str, spp: int, seed: int, out: Path, defines: tuple = ()):
+    """Render scene (with -D name=value for each of `defines`); returns (XYZ mean, XYZ variance of the
+    mean, spp) or raises RuntimeError with render's error line."""
     image, var = out.with_suffix(".exr"), out.with_name(out.stem + "_var.exr")
     # RGB mode: the film's own space (linear Rec.709), taken to XYZ below by the same matrix as
     # Mitsuba's RGB reference, so that no difference between two renditions of the sRGB matrix
@@ -59,6 +59,8 @@ def render(render_exe: Path, scene: Path, mode: str, spp: int, seed: int, out: P
     space = "lin_rec709" if mode == "rgb" else "CIE-XYZ"
     cmd = [str(render_exe), str(scene), "-o", str(image), "--variance", str(var), "--no-png", "--quiet",
            "--mode", mode, "--spp", str(spp), "--seed", str(seed), "--output-space", space]
+    for d in defines:
+        cmd += ["-D", d]
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if proc.returncode != 0:
         lines = [l for l in proc.stderr.strip().splitlines() if l.strip()]
@@ -80,6 +82,11 @@ def channel_ratios(test: np.ndarray, ref: np.ndarray) -> list[float]:
             for c in range(3)]
 
 
+def integrator_defines(args) -> tuple:
+    """The test render's integrator (the scenes' `$integrator` default, path): --integrator."""
+    return (f"integrator={args.integrator}",) if args.integrator else ()
+
+
 def check_one(args, render_exe, name, mode, workdir) -> dict:
     """Render one scene in one mode and test it; returns a row of the table."""
     row = {"scene": name, "mode": mode}
@@ -90,7 +97,7 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         scene = perturb.perturbed_copy(original, args.perturb, workdir / f"{name}_perturbed")
     spp = args.spp
     try:
-        mean, var, spp = render(render_exe, scene, mode, spp, args.seed, workdir / f"{name}_{mode}")
+        mean, var, spp = render(render_exe, scene, mode, spp, args.seed, workdir / f"{name}_{mode}", integrator_defines(args))
     except RuntimeError as e:
         return {**row, "verdict": f"load error: {e}", "spp": spp}
     if args.reference == "mitsuba":
@@ -114,7 +121,7 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         extra = {"mitsuba_ztest": "pass" if passed else "fail", "mitsuba_ztest_fraction": fraction}
         if not r["passed"]:
             other_render = render(render_exe, scene, "rgb" if mode == "spectral" else "spectral", spp, args.seed + 500,
-                                  workdir / f"{name}_{mode}_other")
+                                  workdir / f"{name}_{mode}_other", integrator_defines(args))
             extra["diagnosis"] = diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render)
     pixel_p = r["per_scale"][1]
     if args.worst:
@@ -180,6 +187,7 @@ def write_report(args, rows, seconds, prov) -> Path:
     settings = {"spp": args.spp, "seed": args.seed, "reference": args.reference,
                 "reference spp": mitsuba_refs.REFERENCE_SPP if args.reference == "mitsuba" else 4 * args.spp,
                 "significance": SIGNIFICANCE, "scales": list(welch.SCALES), "perturbation": args.perturb or "none",
+                "integrator": args.integrator or "the scenes' (path)",
                 "command": " ".join(["python3", "experiments/conformance/run.py"] + sys.argv[1:])}
     md = ["# Conformance: iris against Mitsuba 3's reference renders", "",
           f"{passed} of {len(rows)} scene/mode pairs pass; {loaded} load. "
@@ -213,6 +221,8 @@ def main(argv=None) -> int:
     ap.add_argument("--reference", choices=("mitsuba", "iris"), default="mitsuba",
                     help="iris: test against iris's own render of the unperturbed scene (4x spp, another seed)")
     ap.add_argument("--perturb", help="a deliberate error in a temporary copy: albedo=F or fov=D (see perturb.py)")
+    ap.add_argument("--integrator", help="render the tested images with this integrator (-D integrator=NAME: ptracer, bdpt); "
+                                         "with --reference iris the reference keeps the scene's own (path)")
     ap.add_argument("--expect", help="JSON of expected verdicts (scene/mode → pass|fail|load error)")
     ap.add_argument("--expect-all", choices=("pass", "fail", "load error"), help="the verdict every scene/mode must have")
     ap.add_argument("--update-expected", help="write the verdicts of this run to this JSON file (merged into it)")

@@ -129,4 +129,30 @@ float AreaLight::pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* 
     return glm::dot(d, d) / (cosL * area_);
 }
 
+std::optional<LightEmission> AreaLight::sampleLe(const vec2& uPos, const vec2& uDir, const SampledWavelengths& wl,
+                                                 const SceneBounds&) const {
+    LightEmission e;
+    if (kind_ == Kind::Sphere) {
+        const vec3 n = sampleUniformSphere(uPos);
+        e.at.p = center_ + radius_ * n;
+        e.at.uv = sphereUV(glm::transpose(frame_) * n);
+        e.n = inward_ ? -n : n;
+    } else {
+        sampleArea(uPos, e.at, e.n);
+    }
+    const vec3 local = sampleCosineHemisphere(uDir);
+    const vec3 d = glm::normalize(Frame::fromNormal(e.n).toWorld(local));
+    e.ray = Ray(offsetRayOrigin(e.at.p, e.n, d), d);  // off the surface: the ray must not find it again
+    e.L = Le(e.at, e.n, e.ray.d, wl);
+    if (e.L.isBlack()) return std::nullopt;
+    e.pdfPos = 1.0f / area_;
+    e.pdfDir = cosineHemispherePdf(local.z);
+    if (!(e.pdfDir > 0)) return std::nullopt;
+    return e;
+}
+
+vec2 AreaLight::pdfLe(const vec3&, const vec3& n, const vec3& w, const SceneBounds&) const {
+    return vec2(1.0f / area_, cosineHemispherePdf(glm::dot(n, w)));
+}
+
 }  // namespace iris

@@ -33,6 +33,11 @@ public:
     std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const override;
     float pdfLi(const vec3& p, const vec3& wi, const SurfaceInteraction* hit) const override;
     SampledSpectrum Le(const TextureQuery& at, const vec3& n, const vec3& w, const SampledWavelengths& wl) const override;
+    /// A point uniform in area and a cosine-weighted direction on the emitting side (pbrt-v4
+    /// §12.3 DiffuseAreaLight::SampleLe): pdfPos = 1/area, pdfDir = cosθ/π.
+    std::optional<LightEmission> sampleLe(const vec2& uPos, const vec2& uDir, const SampledWavelengths& wl,
+                                          const SceneBounds& bounds) const override;
+    vec2 pdfLe(const vec3& p, const vec3& n, const vec3& w, const SceneBounds& bounds) const override;
     float area() const { return area_; }
 
 private:

@@ -1,6 +1,6 @@
 // Directional light (Mitsuba "directional"): irradiance E on surfaces facing the direction;
 // the light travels along `direction` (or +z of to_world).
-#include "render/lights/light.h"
+#include "render/lights/light_emission.h"
 #include "core/registry.h"
 #include "spectral/spectrum.h"
 #include "spectral/spectrum_params.h"
@@ -24,6 +24,20 @@ public:
         ls.L = irradiance_->sample(wl);
         return ls;
     }
+
+    /// A ray along the light's direction from a disk that covers the scene, carrying the
+    /// irradiance (pbrt-v4 §12.4 DistantLight::SampleLe: pdfPos = 1/(πR²), the direction a delta).
+    std::optional<LightEmission> sampleLe(const vec2& uPos, const vec2&, const SampledWavelengths& wl,
+                                          const SceneBounds& bounds) const override {
+        LightEmission e;
+        e.ray = Ray(emissionDiskOrigin(bounds, -dir_, uPos), dir_);
+        e.L = irradiance_->sample(wl);
+        e.pdfPos = emissionDiskPdf(bounds);
+        e.pdfDir = 1.0f;
+        return e;
+    }
+    /// No ray of another technique can reach a delta direction (pbrt-v4 DistantLight::PDF_Le).
+    vec2 pdfLe(const vec3&, const vec3&, const vec3&, const SceneBounds&) const override { return vec2(0.0f); }
 
 private:
     vec3 dir_;

@@ -29,6 +29,25 @@ struct LightSample {
     bool infinite = false;  // shadow ray goes to infinity
 };
 
+/// A ray leaving a light (light tracing and BDPT, pbrt-v4 §12.1 Light::SampleLe, Veach 1997
+/// §10.2): its origin and unit direction, what it carries, and the two densities it was drawn with.
+struct LightEmission {
+    Ray ray;               // from a surface, its origin is offset off it (at.p is the point itself)
+    /// Radiance (area and infinite lights), radiant intensity (point, spot, projector) or
+    /// irradiance (directional) leaving along ray.d.
+    SampledSpectrum L;
+    vec3 n{0.0f};          // the surface normal at the origin (area lights), 0 otherwise
+    TextureQuery at;       // the origin as the light's radiance texture sees it (area lights)
+    float pdfPos = 0.0f;   // area density of the origin (1 for a delta position)
+    float pdfDir = 0.0f;   // solid-angle density of the direction (1 for a delta direction)
+    /// The path throughput the ray starts with, L |cos θ| / (pdfPos pdfDir) (pbrt-v4
+    /// GenerateLightSubpath); |cos θ| only for origins on a surface.
+    SampledSpectrum weight() const {
+        const float cosTheta = glm::dot(n, n) > 0 ? std::abs(glm::dot(n, ray.d)) : 1.0f;
+        return L * (cosTheta / (pdfPos * pdfDir));
+    }
+};
+
 class Light {
 public:
     enum class Type { DeltaPosition, DeltaDirection, Area, Infinite };
@@ -55,6 +74,17 @@ public:
     virtual SampledSpectrum Le(const TextureQuery& at, const vec3& n, const vec3& w, const SampledWavelengths& wl) const {
         return SampledSpectrum(wl.size());
     }
+
+    /// A ray leaving the light: uPos draws its origin, uDir its direction; `bounds` are the
+    /// scene's (infinite and directional lights start their rays on a disk that covers it). The
+    /// default serves infinite lights from sampleLi and pdfLi (render/lights/light_emission.cpp);
+    /// every other type overrides it. nullopt when nothing leaves.
+    virtual std::optional<LightEmission> sampleLe(const vec2& uPos, const vec2& uDir, const SampledWavelengths& wl,
+                                                  const SceneBounds& bounds) const;
+    /// The densities sampleLe has for a ray leaving point p (normal n for area lights, else 0) in
+    /// direction w, as {pdfPos, pdfDir}; for infinite lights w is the ray's direction into the
+    /// scene and p is unused.
+    virtual vec2 pdfLe(const vec3& p, const vec3& n, const vec3& w, const SceneBounds& bounds) const;
 };
 
 using LightPtr = std::shared_ptr<Light>;

@@ -6,7 +6,9 @@
 // multiplies the intensity, projected along the axis: a direction (x, y, z) in the light's frame
 // looks it up at uv = ½ + ½ (x, y) / (z tan cutoff) (Mitsuba 3 direction_to_uv).
 #include "render/lights/light.h"
+#include "core/frame.h"
 #include "core/registry.h"
+#include "core/sampling.h"
 #include "materials/textures/texture_params.h"
 #include "spectral/spectrum.h"
 #include "spectral/spectrum_params.h"
@@ -22,7 +24,7 @@ public:
           axis_(glm::normalize(transformVector(toWorld, vec3(0, 0, 1)))),
           toLocal_(glm::inverse(mat3(toWorld))),
           intensity_(std::move(intensity)), texture_(std::move(texture)), cutoff_(cutoff), beam_(beam),
-          cosCutoff_(std::cos(cutoff)), cosBeam_(std::cos(beam)), uvFactor_(std::tan(cutoff)) {}
+          cosCutoff_(std::cos(cutoff)), cosBeam_(std::cos(beam)), uvFactor_(std::tan(cutoff)), frame_(Frame::fromNormal(axis_)) {}
 
     Type type() const override { return Type::DeltaPosition; }
 
@@ -37,16 +39,40 @@ public:
         const float falloff = this->falloff(glm::dot(-ls.wi, axis_));
         if (falloff <= 0) return std::nullopt;
         ls.L = intensity_->sample(wl) * (falloff / dist2);
-        if (texture_) {
-            const vec3 local = toLocal_ * -ls.wi;  // Mitsuba 3 direction_to_uv
-            TextureQuery q;
-            q.uv = vec2(0.5f + 0.5f * local.x / (local.z * uvFactor_), 0.5f + 0.5f * local.y / (local.z * uvFactor_));
-            ls.L *= texture_->eval(q, wl);
-        }
+        if (texture_) ls.L *= textureAt(-ls.wi, wl);
         return ls;
     }
 
+    /// A ray from the light's position: directions uniform on the sphere (point) or in the cone of
+    /// cutoff_angle (spot), carrying the radiant intensity (pbrt-v4 §12.2.1 PointLight::SampleLe,
+    /// SpotLight::SampleLe).
+    std::optional<LightEmission> sampleLe(const vec2&, const vec2& uDir, const SampledWavelengths& wl,
+                                          const SceneBounds&) const override {
+        const float cosMax = cutoff_ < 0.0f ? -1.0f : cosCutoff_;
+        LightEmission e;
+        e.ray = Ray(position_, glm::normalize(frame_.toWorld(sampleUniformCone(uDir, cosMax))));
+        const float falloff = this->falloff(glm::dot(e.ray.d, axis_));
+        if (falloff <= 0) return std::nullopt;
+        e.L = intensity_->sample(wl) * falloff;
+        if (texture_) e.L *= textureAt(e.ray.d, wl);
+        e.pdfPos = 1.0f;
+        e.pdfDir = uniformConePdf(cosMax);
+        return e;
+    }
+    vec2 pdfLe(const vec3&, const vec3&, const vec3& w, const SceneBounds&) const override {
+        const float cosMax = cutoff_ < 0.0f ? -1.0f : cosCutoff_;
+        return vec2(0.0f, glm::dot(w, axis_) >= cosMax ? uniformConePdf(cosMax) : 0.0f);
+    }
+
 private:
+    /// The projected texture towards direction w (world, leaving the light).
+    SampledSpectrum textureAt(const vec3& w, const SampledWavelengths& wl) const {
+        const vec3 local = toLocal_ * w;  // Mitsuba 3 direction_to_uv
+        TextureQuery q;
+        q.uv = vec2(0.5f + 0.5f * local.x / (local.z * uvFactor_), 0.5f + 0.5f * local.y / (local.z * uvFactor_));
+        return texture_->eval(q, wl);
+    }
+
     float falloff(float cosTheta) const {
         if (cutoff_ < 0.0f) return 1.0f;  // point light
         if (!(cosTheta > cosCutoff_)) return 0.0f;
@@ -59,6 +85,7 @@ private:
     SpectrumPtr intensity_;
     SpectrumTexturePtr texture_;
     float cutoff_, beam_, cosCutoff_, cosBeam_, uvFactor_;
+    Frame frame_;  // around the axis, for emission sampling
 };
 
 std::shared_ptr<Light> createPoint(const Properties& p) {

@@ -47,6 +47,32 @@ public:
         return ls;
     }
 
+    /// A ray through a point of the image drawn uniformly in (u, v): the direction's density is
+    /// 1 / (4 tan(fov_x/2) tan(fov_y/2) cos³θ) (the image plane z = 1 seen from the pinhole, as the
+    /// perspective camera's importance, pbrt-v4 §5.4.1), and it carries the intensity I = L d² of
+    /// sampleLi's radiance at unit distance.
+    std::optional<LightEmission> sampleLe(const vec2&, const vec2& uDir, const SampledWavelengths& wl,
+                                          const SceneBounds&) const override {
+        const vec3 local((1.0f - 2.0f * uDir.x) * tanHalf_.x, (1.0f - 2.0f * uDir.y) * tanHalf_.y, 1.0f);
+        const vec3 d = glm::normalize(vec3(glm::inverse(toLocal_) * vec4(local, 0.0f)));
+        const std::optional<LightSample> ls = sampleLi(position_ + d, vec2(0.0f), wl);
+        if (!ls) return std::nullopt;
+        LightEmission e;
+        e.ray = Ray(position_, d);
+        e.L = ls->L;  // at distance 1: the intensity
+        e.pdfPos = 1.0f;
+        e.pdfDir = pdfLe(position_, vec3(0.0f), d, SceneBounds{}).y;
+        return e;
+    }
+    vec2 pdfLe(const vec3&, const vec3&, const vec3& w, const SceneBounds&) const override {
+        const vec3 local = vec3(toLocal_ * vec4(w, 0.0f));
+        if (!(local.z > 0.0f)) return vec2(0.0f);
+        const vec2 t(local.x / local.z, local.y / local.z);
+        if (std::abs(t.x) > tanHalf_.x || std::abs(t.y) > tanHalf_.y) return vec2(0.0f);
+        const float cosTheta = local.z / glm::length(local);
+        return vec2(0.0f, 1.0f / (4.0f * tanHalf_.x * tanHalf_.y * cosTheta * cosTheta * cosTheta));
+    }
+
 private:
     vec3 position_, axis_;
     mat4 toLocal_;

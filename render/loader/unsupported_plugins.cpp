@@ -14,8 +14,6 @@ IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rend
 IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
 IRIS_HINT(LightRegistry, "volumelight", "a volumelight belongs to a medium: nest it in the <medium>, or attach it to a shape "
                                        "whose interior medium it then makes emit");
-IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
-IRIS_HINT(IntegratorRegistry, "ptracer", "iris traces from the camera only: use 'path' (the same expected image)");
 IRIS_HINT(IntegratorRegistry, "aov", "iris writes no AOV images: the 'moment' wrapper gives per-pixel first and second moments");
 IRIS_HINT(SensorRegistry, "thinlens", "iris has no depth of field: use 'perspective' (a pinhole, everything in focus)");
 IRIS_HINT(ShapeRegistry, "bsplinecurve", "iris has no curve shapes: convert the curves to a mesh (obj or ply)");

@@ -15,6 +15,12 @@ public:
         : Sensor(toWorld), width_(film.width), height_(film.height), nearClip_(nearClip),
           direction_(glm::normalize(vec3(toWorld * vec4(0, 0, 1, 0)))) {
         if (!isFinite(direction_)) fail("orthographic sensor: to_world maps +z to a zero vector");
+        toLocal_ = glm::inverse(toWorld);
+        // The film window (x ∈ [−1, 1], y ∈ [−1/aspect, 1/aspect]) projected perpendicular to the
+        // view direction.
+        const float aspect = float(width_) / float(height_);
+        const vec3 ex = vec3(toWorld * vec4(2, 0, 0, 0)), ey = vec3(toWorld * vec4(0, 2 / aspect, 0, 0));
+        areaPerp_ = std::abs(glm::dot(glm::cross(ex, ey), direction_));
     }
 
     Ray generateRay(const vec2& filmPos) const override {
@@ -25,10 +31,28 @@ public:
         return Ray(vec3(toWorld() * vec4(local, 1.0f)), direction_);
     }
 
+    /// The point of the film window that sees p along the view direction; the importance is
+    /// W H / A⊥ per unit area perpendicular to the rays (Veach 1997 §10.2; a particle at p covers
+    /// |cos θ_p| dA of it), whatever the distance.
+    std::optional<SensorSample> sampleWi(const vec3& p) const override {
+        const vec3 local = vec3(toLocal_ * vec4(p, 1.0f));
+        if (!(local.z > nearClip_)) return std::nullopt;
+        const float aspect = float(width_) / float(height_);
+        SensorSample s;
+        s.pSensor = vec3(toWorld() * vec4(local.x, local.y, nearClip_, 1.0f));
+        s.dist = glm::length(s.pSensor - p);
+        s.wi = -direction_;
+        s.filmPos = vec2(0.5f * (1.0f - local.x) * float(width_), 0.5f * (1.0f - local.y * aspect) * float(height_));
+        s.weight = float(width_) * float(height_) / areaPerp_;
+        return s;
+    }
+
 private:
     int width_, height_;
     float nearClip_;
     vec3 direction_;
+    mat4 toLocal_;
+    float areaPerp_ = 1.0f;
 };
 
 std::shared_ptr<Sensor> createOrthographic(const Properties& p, FilmSize film) {

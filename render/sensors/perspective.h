@@ -11,6 +11,9 @@ class PerspectiveSensor final : public Sensor {
 public:
     PerspectiveSensor(const mat4& toWorld, float fovDegrees, FovAxis axis, FilmSize film);
     Ray generateRay(const vec2& filmPos) const override;
+    std::optional<SensorSample> sampleWi(const vec3& p) const override;
+    std::optional<vec3> pinhole() const override { return origin_; }
+    float pdfDirection(const vec3& w) const override;
     float fovDegrees() const { return fovDegrees_; }
     FovAxis fovAxis() const { return axis_; }
 
@@ -20,6 +23,7 @@ private:
     int width_, height_;
     vec3 origin_;
     mat3 rotation_;
+    mat3 toCamera_;  // inverse of rotation_
     float tanHalfX_, tanHalfY_;
 };
 

@@ -48,6 +48,6 @@ TEST(MomentIntegrator, RendersTheNestedIntegratorAndItsSecondMoment) {
 TEST(MomentIntegrator, NeedsOneNestedIntegrator) {
     const std::string noNested = R"(<scene version="3.0.0"><integrator type="moment"/></scene>)";
     EXPECT_THROW(loadSceneFromString(noNested, "."), Error);
-    const std::string unknownNested = R"(<scene version="3.0.0"><integrator type="moment"><integrator type="bdpt"/></integrator></scene>)";
+    const std::string unknownNested = R"(<scene version="3.0.0"><integrator type="moment"><integrator type="sppm"/></integrator></scene>)";
     EXPECT_THROW(loadSceneFromString(unknownNested, "."), Error);
 }

@@ -34,10 +34,7 @@ TEST(LoaderProblems, UnhonouredPluginsSayWhatToUseInstead) {
     const std::string hair = loadError("<shape type=\"sphere\">\n<bsdf type=\"hair\"/></shape>\n");
     EXPECT_TRUE(has(hair, "<string>:3: unknown bsdf type 'hair'")) << hair;
     EXPECT_TRUE(has(hair, "roughconductor")) << hair;
-    EXPECT_TRUE(has(loadError("<integrator type=\"bdpt\"/>\n"), "use 'path'"));
     EXPECT_TRUE(has(loadError("<emitter type=\"sun\"/>\n"), "use 'directional'"));
-    const std::string ptracer = loadError("<integrator type=\"ptracer\"/>\n");
-    EXPECT_TRUE(has(ptracer, "<string>:2: unknown integrator type 'ptracer'") && has(ptracer, "use 'path'")) << ptracer;
     EXPECT_TRUE(has(loadError("<shape type=\"linearcurve\"/>\n"), "convert the curves to a mesh"));
     EXPECT_TRUE(has(loadError("<sensor type=\"thinlens\"/>\n"), "use 'perspective'"));
     // A type in capitals (files written where the file system ignores case) names the plugin.

@@ -351,8 +351,8 @@ TEST(SceneLoader, ErrorsNameFileLineAndProblem) {
                     4, {"unknown parameter 'roughness'", "bsdf 'diffuse'"});
     expectLoadError("e_rfilter.xml", scene("<sensor type=\"perspective\"><film type=\"hdrfilm\">\n<rfilter type=\"sinc\"/></film></sensor>\n"), 3,
                     {"unknown rfilter type 'sinc' (supported: ", "box, ", "gaussian"});
-    expectLoadError("e_integrator.xml", scene("\n<integrator type=\"bdpt\"/>\n"), 3,
-                    {"unknown integrator type 'bdpt' (supported: ", "direct, ", "path"});
+    expectLoadError("e_integrator.xml", scene("\n<integrator type=\"sppm\"/>\n"), 3,
+                    {"unknown integrator type 'sppm' (supported: ", "bdpt, ", "direct, ", "path, ", "ptracer"});
     expectLoadError("e_shape.xml", scene("\n<shape type=\"torus\"/>\n"), 3,
                     {"unknown shape type 'torus' (supported: ", "cube, ", "sphere"});
     expectLoadError("e_sensor.xml", scene("\n<sensor type=\"fisheye\"/>\n"), 3,
