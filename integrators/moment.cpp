@@ -17,6 +17,11 @@ public:
         return nested_->Li(scene, ray, wl, sampler, arena, stats);
     }
     bool rendersMedia() const override { return nested_->rendersMedia(); }
+    bool hasPolarizedForm() const override { return nested_->hasPolarizedForm(); }
+    void LiStokes(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
+                  StokesEstimate& est) const override {
+        nested_->LiStokes(scene, ray, wl, sampler, arena, stats, est);
+    }
 
 private:
     IntegratorPtr nested_;
