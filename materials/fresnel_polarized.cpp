@@ -50,4 +50,20 @@ InterfaceMuellerTerms transmissionTerms(float cosThetaI, float eta) {
     return termsOf(ts, tp, n * ct / ci);
 }
 
+SlabMuellerTerms slabTerms(float cosThetaI, float eta) {
+    const double ci = std::min(1.0, std::abs(double(cosThetaI))), n = eta;
+    if (n == 1.0) return {{}, {1, 0, 1, 0}};
+    const double ct = std::sqrt(std::max(0.0, 1.0 - (1.0 - ci * ci) / (n * n)));
+    const double rs = (ci - n * ct) / (ci + n * ct), rp = (n * ci - ct) / (n * ci + ct);  // Born & Wolf §1.5.2
+    const double Rs = rs * rs, Rp = rp * rp, Ts = 1.0 - Rs, Tp = 1.0 - Rp;
+    const double RsS = 2.0 * Rs / (1.0 + Rs), RpS = 2.0 * Rp / (1.0 + Rp);
+    const double TsS = Ts / (1.0 + Rs), TpS = Tp / (1.0 + Rp);
+    const double den = 1.0 - Rs * Rp;
+    const double cross = den > 0 ? Ts * Tp / den : 0.0;  // grazing: R = 1, nothing enters
+    SlabMuellerTerms t;
+    t.reflection = {float(0.5 * (RsS + RpS)), float(0.5 * (RsS - RpS)), float(rs * rp * (1.0 + cross)), 0.0f};
+    t.transmission = {float(0.5 * (TsS + TpS)), float(0.5 * (TsS - TpS)), float(cross), 0.0f};
+    return t;
+}
+
 }  // namespace iris

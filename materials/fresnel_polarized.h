@@ -33,6 +33,18 @@ InterfaceMuellerTerms reflectionTerms(float cosThetaI, float eta, float k = 0.0f
 /// reflection (Mitsuba 3 mueller::specular_transmission).
 InterfaceMuellerTerms transmissionTerms(float cosThetaI, float eta);
 
+/// A thin dielectric slab (Mitsuba 3 `thindielectric`) per polarization: the incoherent sum of the
+/// beams reflected k = 0, 1, 2, ... times inside, whose Mueller matrices add. With the interface's
+/// real r_s, r_p (R = r², T = 1 − R, the inside coefficient −r): R' = R + T² R / (1 − R²) =
+/// 2R/(1 + R) and T' = (1 − R)/(1 + R) for s and p separately, and the cross terms
+/// C_R = r_s r_p (1 + T_s T_p / (1 − R_s R_p)), C_T = T_s T_p / (1 − R_s R_p), D = 0 (the
+/// geometric series of (r_s r_p)^{2k−1} and (r_s r_p)^{2k}). Light never reaches the critical angle
+/// inside a slab between equal media.
+struct SlabMuellerTerms {
+    InterfaceMuellerTerms reflection, transmission;
+};
+SlabMuellerTerms slabTerms(float cosThetaI, float eta);
+
 /// The per-wavelength interface Mueller matrix in s-axis bases from per-lane terms.
 template <typename Terms>
 MuellerSpectrum interfaceMuellerPerLane(int n, Terms&& terms) {

@@ -33,16 +33,38 @@ public:
     explicit MuellerSpectrum(int n = 0) {
         for (SampledSpectrum& e : e_) e = SampledSpectrum(n);
     }
+    // Copies touch only the lanes in use, and only entry (0, 0) of a depolarizer: a matrix is
+    // 16 × kMaxWavelengths floats, most of it unused at N = 4.
+    MuellerSpectrum(const MuellerSpectrum& o) { copyFrom(o); }
+    MuellerSpectrum& operator=(const MuellerSpectrum& o) {
+        if (this != &o) copyFrom(o);
+        return *this;
+    }
+
     int size() const { return e_[0].size(); }
-    SampledSpectrum& operator()(int i, int j) { return e_[4 * i + j]; }
-    const SampledSpectrum& operator()(int i, int j) const { return e_[4 * i + j]; }
+    /// Entry (i, j). A depolarizer stores only (0, 0): read the others after expanded().
+    SampledSpectrum& operator()(int i, int j) {
+        assert(!depolarizing_ || (i == 0 && j == 0));
+        return e_[4 * i + j];
+    }
+    const SampledSpectrum& operator()(int i, int j) const {
+        assert(!depolarizing_ || (i == 0 && j == 0));
+        return e_[4 * i + j];
+    }
     /// True when only entry (0, 0) may be non-zero (set by depolarizer(); the products keep it).
     bool depolarizing() const { return depolarizing_; }
+    /// The same matrix with all 16 entries stored.
+    MuellerSpectrum expanded() const {
+        if (!depolarizing_) return *this;
+        MuellerSpectrum m(size());
+        m.e_[0] = e_[0];
+        return m;
+    }
 
     /// Mitsuba 3 mueller::depolarizer: the (0, 0) entry is v, all others 0.
     static MuellerSpectrum depolarizer(const SampledSpectrum& v) {
-        MuellerSpectrum m(v.size());
-        m(0, 0) = v;
+        MuellerSpectrum m(Uninitialized{});
+        m.e_[0] = v;
         m.depolarizing_ = true;
         return m;
     }
@@ -54,55 +76,65 @@ public:
     }
 
     MuellerSpectrum& operator*=(const SampledSpectrum& v) {
-        if (depolarizing_) return e_[0] *= v, *this;
-        for (SampledSpectrum& e : e_) e *= v;
+        for (int k = 0; k < used(); ++k) e_[k] *= v;
         return *this;
     }
     MuellerSpectrum& operator*=(float v) {
-        if (depolarizing_) return e_[0] *= v, *this;
-        for (SampledSpectrum& e : e_) e *= v;
+        for (int k = 0; k < used(); ++k) e_[k] *= v;
         return *this;
     }
     MuellerSpectrum& operator+=(const MuellerSpectrum& o) {
-        for (int k = 0; k < 16; ++k) e_[k] += o.e_[k];
-        depolarizing_ = depolarizing_ && o.depolarizing_;
+        if (depolarizing_ && o.depolarizing_) return e_[0] += o.e_[0], *this;
+        if (depolarizing_) *this = expanded();
+        const MuellerSpectrum b = o.expanded();
+        for (int k = 0; k < 16; ++k) e_[k] += b.e_[k];
         return *this;
     }
     friend MuellerSpectrum operator*(MuellerSpectrum m, const SampledSpectrum& v) { return m *= v; }
     friend MuellerSpectrum operator*(MuellerSpectrum m, float v) { return m *= v; }
     /// Matrix product per lane: (a·b) applies b first, then a.
     friend MuellerSpectrum operator*(const MuellerSpectrum& a, const MuellerSpectrum& b) {
+        if (a.depolarizing_ && b.depolarizing_) return depolarizer(a.e_[0] * b.e_[0]);
+        const MuellerSpectrum x = a.expanded(), y = b.expanded();
         MuellerSpectrum r(a.size());
-        if (a.depolarizing_ && b.depolarizing_) {
-            r(0, 0) = a(0, 0) * b(0, 0);
-            r.depolarizing_ = true;
-            return r;
-        }
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j)
-                for (int k = 0; k < 4; ++k) r(i, j) += a(i, k) * b(k, j);
+                for (int k = 0; k < 4; ++k) r(i, j) += x(i, k) * y(k, j);
         return r;
     }
     friend StokesVector operator*(const MuellerSpectrum& m, const StokesVector& v) {
+        const MuellerSpectrum x = m.expanded();
         StokesVector r(m.size());
         for (int i = 0; i < 4; ++i)
-            for (int k = 0; k < 4; ++k) r.s[i] += m(i, k) * v.s[k];
+            for (int k = 0; k < 4; ++k) r.s[i] += x(i, k) * v.s[k];
         return r;
     }
     MuellerSpectrum transposed() const {
+        if (depolarizing_) return *this;
         MuellerSpectrum r(size());
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) r(i, j) = (*this)(j, i);
-        r.depolarizing_ = depolarizing_;
         return r;
     }
     bool hasNonFinite() const {
-        for (const SampledSpectrum& e : e_)
-            if (e.hasNonFinite()) return true;
+        for (int k = 0; k < used(); ++k)
+            if (e_[k].hasNonFinite()) return true;
         return false;
     }
 
 private:
+    struct Uninitialized {};
+    explicit MuellerSpectrum(Uninitialized) {}
+    int used() const { return depolarizing_ ? 1 : 16; }
+    void copyFrom(const MuellerSpectrum& o) {
+        depolarizing_ = o.depolarizing_;
+        const int n = o.size();
+        for (int k = 0; k < o.used(); ++k) {
+            const float* src = o.e_[k].lanes();
+            e_[k] = SampledSpectrum::fromLanes(n, [src](int j) { return src[j]; });
+        }
+    }
+
     SampledSpectrum e_[16];
     bool depolarizing_ = false;
 };

@@ -16,12 +16,14 @@ inline vec3 stokesBasis(const vec3& forward) { return Frame::fromNormal(forward)
 
 /// The rotation that re-expresses a Stokes vector travelling along `forward` from the basis vector
 /// `current` to `target` (both orthogonal to forward): rotator(θ) with θ the angle between them,
-/// negative when forward · (current × target) < 0 (Mitsuba 3 mueller::rotate_stokes_basis). The
-/// cosine and sine of θ come from the dot and the triple product, so cos 2θ and sin 2θ need no
-/// trigonometry.
+/// negative when forward · (current × target) < 0 (Mitsuba 3 mueller::rotate_stokes_basis, whose
+/// angle is unit_angle(current, target) ∈ [0, π] also when a basis is not orthogonal to forward).
+/// The cosine and sine of θ are the dot product and the signed length of the cross product, so
+/// cos 2θ and sin 2θ need no trigonometry.
 inline mueller::BasisRotation stokesBasisRotation(const vec3& forward, const vec3& current, const vec3& target) {
     const float c = glm::dot(current, target);
-    const float s = glm::dot(forward, glm::cross(current, target));
+    const vec3 cr = glm::cross(current, target);
+    const float s = std::copysign(glm::length(cr), glm::dot(forward, cr));
     const float n2 = c * c + s * s;
     if (!(n2 > 0)) return {};
     return {(c * c - s * s) / n2, 2.0f * c * s / n2};
