@@ -2,9 +2,11 @@
 // docs/polarization.md). Conventions are Mitsuba 3's (include/mitsuba/render/mueller.h): a Stokes
 // vector (S0, S1, S2, S3) is meaningful with a reference basis vector x orthogonal to the direction
 // the light travels; S1 > 0 is linear polarization along x, S2 > 0 along x rotated by +45° (the
-// rotator below), S3 > 0 right circular (Collett, "Polarized Light", ch. 5, as Mitsuba's
-// quarter-wave test test_retarder.py states it). A Mueller matrix maps the Stokes vector of the
-// light arriving (in its basis) to that of the light leaving (in its basis).
+// rotator below), S3 > 0 right circular, the ellipse seen from the sensor looking back along the
+// beam (Mitsuba's test_retarder.py: a quarter-wave plate with its fast axis along x turns +45°
+// light into S3 = −S0, after Goldstein, "Polarized Light", 3rd ed., eqs. 6.46-6.47). A Mueller
+// matrix maps the Stokes vector of the light arriving (in its basis) to that of the light leaving
+// (in its basis).
 //
 // A matrix is 16 SampledSpectrum entries, row-major; `depolarizing` marks the matrices whose only
 // non-zero entry is (0, 0) (Mitsuba's depolarizer), which the integrators multiply in one lane op.
