@@ -242,3 +242,29 @@ TEST(PolarizedBSDF, NormalMappedMirrorIsTheMirrorInThePerturbedFrame) {
         expectMuellerNear(a, b, 2e-4f, "normalmap");
     }
 }
+
+TEST(PolarizedBSDF, ZeroThicknessFilmIsTheBareInterface) {
+    // thinfilm with d = 0 is the bare substrate: its matrices equal conductor's and dielectric's
+    // (Mitsuba 3's fresnel_polarized terms), phase terms included, from both sides of a dielectric
+    // and beyond the critical angle.
+    const auto film = makeBSDF("thinfilm", {{"thickness", 0.0f}, {"substrate_eta", 0.4f}, {"substrate_k", 2.7f}}, spectralWl());
+    const auto metal = makeBSDF("conductor", {{"eta", 0.4f}, {"k", 2.7f}}, spectralWl());
+    const auto filmT = makeBSDF("thinfilm", {{"thickness", 0.0f}, {"substrate", std::string("dielectric")}, {"substrate_eta", 1.6f},
+                                             {"transmission", true}},
+                                spectralWl());
+    const auto glass = makeBSDF("dielectric", {{"int_ior", 1.6f}, {"ext_ior", 1.0f}}, spectralWl());
+    for (float c : {0.95f, 0.7f, 0.4f, 0.15f}) {
+        const vec3 wo = dirFromCos(c, 0.9f);
+        expectMuellerNear(film.bsdf->sampleMueller(wo, 0.5f, vec2(0.5f), TransportMode::Radiance)->M,
+                          metal.bsdf->sampleMueller(wo, 0.5f, vec2(0.5f), TransportMode::Radiance)->M, 1e-5f / c, "conductor");
+        for (const vec3& w : {wo, vec3(wo.x, wo.y, -wo.z)})  // from outside and from inside (TIR below c ≈ 0.78)
+            for (float uc : {0.0f, 0.999f}) {  // the reflection and, where there is one, the refraction
+                const auto a = filmT.bsdf->sampleMueller(w, uc, vec2(0.5f), TransportMode::Radiance);
+                const auto b = glass.bsdf->sampleMueller(w, uc, vec2(0.5f), TransportMode::Radiance);
+                ASSERT_EQ(bool(a), bool(b));
+                if (!a) continue;
+                ASSERT_EQ(a->s.flags & kBSDFTransmission, b->s.flags & kBSDFTransmission);
+                expectMuellerNear(a->M, b->M, 2e-5f / c, "dielectric");
+            }
+    }
+}
