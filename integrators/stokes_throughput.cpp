@@ -45,6 +45,11 @@ void StokesThroughput::operator*=(float s) {
         for (int j = 0; j < 4; ++j) r_[k][j] *= s;
 }
 
+void StokesThroughput::operator*=(const SampledSpectrum& s) {
+    for (int k = 0; k < rows_; ++k)
+        for (int j = 0; j < 4; ++j) r_[k][j] *= s;
+}
+
 void StokesThroughput::addThrough(const MuellerSpectrum& M, const SampledSpectrum& L, float w, StokesVector& est) const {
     const SampledSpectrum Lw = L * w;
     for (int k = 0; k < rows_; ++k) {

@@ -32,6 +32,8 @@ public:
     /// rows ← rows · M; the rows then act on M's input basis, `inputBasis`.
     void apply(const MuellerSpectrum& M, const vec3& inputBasis);
     void operator*=(float s);
+    /// Scales every row by a per-wavelength weight (media's σ and transmittance ratios).
+    void operator*=(const SampledSpectrum& s);
     /// The measurement of unpolarized light of radiance L arriving through M (M's output basis
     /// being the rows' basis) with weight w: est.S_k += Σ_j rows(k, j) M(j, 0) L w.
     void addThrough(const MuellerSpectrum& M, const SampledSpectrum& L, float w, StokesVector& est) const;

@@ -27,7 +27,7 @@ MuellerSpectrum fromSAxisBases(const MuellerSpectrum& m, const vec3& normal, con
     const bool collinear = glm::dot(sIn0, sIn0) == 0;
     const vec3 sIn = collinear ? vec3(1, 0, 0) : glm::normalize(sIn0);
     const vec3 sOut = collinear ? vec3(1, 0, 0) : normalizedOr(glm::cross(normal, wo), vec3(1, 0, 0));
-    return mueller::rotateBases(m, stokesBasisRotation(-wi, sIn, stokesBasis(-wi)), stokesBasisRotation(wo, sOut, stokesBasis(wo)));
+    return toImplicitBases(m, -wi, sIn, wo, sOut);
 }
 
 MuellerSpectrum fromNestedFrame(const MuellerSpectrum& nested, const Frame& f, bool mirrored, const vec3& wi, const vec3& wo) {
@@ -35,7 +35,7 @@ MuellerSpectrum fromNestedFrame(const MuellerSpectrum& nested, const Frame& f, b
     // The nested bases, stokesBasis of the nested-local directions, mapped to this frame.
     const vec3 inCur = f.toWorld(stokesBasis(f.toLocal(-wi))), outCur = f.toWorld(stokesBasis(f.toLocal(wo)));
     const MuellerSpectrum m = mirrored ? mirrorHandedness(nested) : nested;
-    return mueller::rotateBases(m, stokesBasisRotation(-wi, inCur, stokesBasis(-wi)), stokesBasisRotation(wo, outCur, stokesBasis(wo)));
+    return toImplicitBases(m, -wi, inCur, wo, outCur);
 }
 
 }  // namespace iris

@@ -29,4 +29,14 @@ inline mueller::BasisRotation stokesBasisRotation(const vec3& forward, const vec
     return {(c * c - s * s) / n2, 2.0f * c * s / n2};
 }
 
+/// M known from basis vector inCurrent (light arriving along inForward) to outCurrent (leaving along
+/// outForward), re-expressed from stokesBasis(inForward) to stokesBasis(outForward): R_out M R_inᵀ
+/// (Mitsuba 3 mueller::rotate_mueller_basis with the implicit bases as targets).
+inline MuellerSpectrum toImplicitBases(const MuellerSpectrum& m, const vec3& inForward, const vec3& inCurrent, const vec3& outForward,
+                                       const vec3& outCurrent) {
+    if (m.depolarizing()) return m;
+    return mueller::rotateBases(m, stokesBasisRotation(inForward, inCurrent, stokesBasis(inForward)),
+                                stokesBasisRotation(outForward, outCurrent, stokesBasis(outForward)));
+}
+
 }  // namespace iris
