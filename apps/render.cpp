@@ -366,7 +366,8 @@ int main(int argc, char** argv) {
 
     try {
         const ColorManager colors(ocioConfig);
-        if (!colors.hasColorSpace(outputSpace)) fail("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath());
+        if (!colors.hasColorSpace(outputSpace))  // a usage error, refused before any work like the others
+            usageError(strCat("--output-space: colour space '", outputSpace, "' is not in ", colors.configPath()));
 
         memoryLimit();  // an invalid IRIS_MEMORY_LIMIT stops here, before the scene is read
         raiseAtStartIfAsked();
@@ -427,6 +428,7 @@ int main(int argc, char** argv) {
             }
             writeOrRescue(ldrPath, [&](const std::string& p) { writeLDR(p, ldr); }, errors);
         }
+        if (!st.checkpointError.empty()) errors += (errors.empty() ? "" : "\n") + ("--checkpoint " + st.checkpointError);
         if (!errors.empty()) {  // one line per output that is not where it was asked
             std::fprintf(stderr, "%s\n", errors.c_str());
             return 1;

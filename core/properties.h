@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/object_cache.h"
 #include "core/math.h"
 
 namespace iris {
 
+class ObjectCache;
 class Properties;
 using PropertiesPtr = std::shared_ptr<Properties>;
 
@@ -97,8 +99,10 @@ public:
     /// for every parameter that no getter has read.
     void checkUnqueried() const;
 
-    /// Cache for the object built from these properties (shared by every <ref> to the same id).
-    mutable std::shared_ptr<void> instance;
+    /// The cache of the load these properties came from (core/object_cache.h), or nullptr for
+    /// properties built in code (their objects are then not shared).
+    ObjectCache* objectCache() const { return cache_; }
+    void setObjectCache(ObjectCache* cache) { cache_ = cache; }
 
     /// Raw access for the typed getters of higher layers. A stored value and where it was written.
     struct Entry {
@@ -118,6 +122,7 @@ public:
     [[noreturn]] void typeError(const std::string& name, const char* expected) const;
 
 private:
+    ObjectCache* cache_ = nullptr;
 
     std::string tag_, type_, id_;
     SourceLocation loc_;
@@ -126,5 +131,17 @@ private:
     int formatVersion_ = 3;
     mutable std::set<std::string> queried_, asked_;
 };
+
+/// The object of type T built from p: the one this load already made from it (a second <ref> to
+/// the same id), or make(), kept in the load's cache for the next one (core/object_cache.h).
+template <class T, class Make>
+std::shared_ptr<T> cachedObject(const Properties& p, Make&& make) {
+    ObjectCache* cache = p.objectCache();
+    if (cache)
+        if (std::shared_ptr<T> hit = cache->find<T>(p)) return hit;
+    std::shared_ptr<T> object = make();
+    if (cache) cache->store<T>(p, object);
+    return object;
+}
 
 }  // namespace iris

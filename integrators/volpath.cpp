@@ -36,7 +36,7 @@
 // cross surfaces whose BSDF has a pass-through lobe with its weight (BSDF::nullTransmission, Mitsuba
 // 3's eval_null_transmission in sample_emitter); any other surface blocks them. Mitsuba 0.6 differs:
 // its volpath counts a null crossing as an interaction on the path and on shadow rays
-// (docs/media.md). Media do not emit.
+// (docs/media.md). A medium with a volumelight emits at every collision (addMediumEmission).
 // Polarized mode (LiStokes, docs/polarization.md) runs the same walk with the throughput as Stokes
 // rows (integrators/stokes_throughput.h), BSDFs and phase functions as Mueller matrices and shadow
 // rays collecting the matrices of the pass-through surfaces they cross (integrators/
@@ -225,6 +225,22 @@ private:
     template <bool P>
     void addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState<P>& ps,
                      const SampledWavelengths& wl) const;
+    /// A volumelight's emission at a collision at p (any kind: real or null), sampled with density
+    /// T_maj σ_maj in lane h: β T_maj j / (T_maj[h] σ_maj[h]), weighted over the lanes as the
+    /// unidirectional strategy (pbrt-v4 §14.2.2, emission at every majorant collision; media/
+    /// volume_light.h for j). Volume emitters are reached only this way (no next-event estimation).
+    /// Polarized: the emission is unpolarized (Mitsuba 3's emitters).
+    template <bool P>
+    void addMediumEmission(const vec3& p, const MajorantSegment& seg, const SampledSpectrum& tm, int h, PathState<P>& ps,
+                           const SampledWavelengths& wl) const {
+        const Volume* j = ps.medium->emission();
+        if (!j || (params_.hideEmitters && ps.depth == 0)) return;
+        const float pdf = tm[h] * seg.sigmaMaj[h];
+        const SampledSpectrum rE = ps.rU * tm * seg.sigmaMaj / pdf;
+        if (!(pdf > 0) || rE.isBlack()) return;
+        if constexpr (P) ps.beta.addUnpolarized(tm * j->eval(p, wl) / pdf, 1.0f / reduce(rE, h, wl), ps.L);
+        else ps.L += ps.beta * tm * j->eval(p, wl) / pdf / reduce(rE, h, wl);
+    }
     /// Russian roulette after a real scattering event (pbrt-v4 §14.2.3), on the MIS-weighted
     /// throughput with radiance scaling undone; u is drawn at every event. False: the path ends.
     template <bool P>
@@ -309,6 +325,7 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
             const float sMaj = seg.sigmaMaj[h];
             const vec3 p = ray.at(t);
             const MediumCoefficients c = ps.medium->coefficients(p, wl);
+            addMediumEmission(p, seg, tm, h, ps, wl);
             if (rng.uniform() < c.sigmaT[h] / sMaj) {
                 // A real collision, pdf T_maj σ_t in lane h: scattering with the path's weight times
                 // T_maj σ_s (the albedo; Mitsuba 3 volpath.cpp, weight_scatter · σ_s).

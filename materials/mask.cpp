@@ -181,10 +181,7 @@ public:
 };
 
 std::shared_ptr<Material> nestedMaterial(const Properties& child) {
-    if (child.instance) return std::static_pointer_cast<Material>(child.instance);
-    auto m = MaterialRegistry::instance().create(child);
-    child.instance = m;
-    return m;
+    return cachedObject<Material>(child, [&] { return MaterialRegistry::instance().create(child); });
 }
 
 std::shared_ptr<Material> createMask(const Properties& p) {

@@ -42,10 +42,8 @@ inline std::vector<std::shared_ptr<Material>> createNestedMaterials(const Proper
         if (obj->tag() == "bsdf") nested.push_back(obj);
     }
     std::vector<std::shared_ptr<Material>> out;
-    for (const PropertiesPtr& child : nested) {
-        if (!child->instance) child->instance = MaterialRegistry::instance().create(*child);
-        out.push_back(std::static_pointer_cast<Material>(child->instance));
-    }
+    for (const PropertiesPtr& child : nested)
+        out.push_back(cachedObject<Material>(*child, [&] { return MaterialRegistry::instance().create(*child); }));
     return out;
 }
 

@@ -86,13 +86,7 @@ std::shared_ptr<Material> createTwoSided(const Properties& p) {
     std::vector<std::shared_ptr<Material>> mats;
     for (const PropertiesPtr& child : nested) {
         if (child->tag() != "bsdf") failAt(child->location(), "twosided: nested object must be a bsdf, not a ", child->tag());
-        if (child->instance) {
-            mats.push_back(std::static_pointer_cast<Material>(child->instance));
-        } else {
-            auto m = MaterialRegistry::instance().create(*child);
-            child->instance = m;
-            mats.push_back(m);
-        }
+        mats.push_back(cachedObject<Material>(*child, [&] { return MaterialRegistry::instance().create(*child); }));
     }
     return std::make_shared<TwoSidedMaterial>(mats[0], mats.size() > 1 ? mats[1] : mats[0]);
 }

@@ -23,7 +23,7 @@ namespace {
 class HeterogeneousMedium final : public Medium {
 public:
     HeterogeneousMedium(MediumCommon common, VolumePtr sigmaT, VolumePtr albedo, float scale)
-        : Medium(std::move(common.phase), common.sampleEmitters), sigmaT_(std::move(sigmaT)),
+        : Medium(std::move(common.phase), common.sampleEmitters, std::move(common.emission)), sigmaT_(std::move(sigmaT)),
           albedo_(std::move(albedo)), scale_(scale),
           grid_(*sigmaT_, sigmaT_->isConstant() ? ivec3(1) : MajorantGrid::resolutionFor(*sigmaT_)) {}
 

@@ -18,7 +18,7 @@ namespace {
 class HomogeneousMedium final : public Medium {
 public:
     HomogeneousMedium(const MediumCommon& c, SpectrumPtr a, SpectrumPtr b, bool absorptionForm, float scale)
-        : Medium(c.phase, c.sampleEmitters), a_(std::move(a)), b_(std::move(b)), absorptionForm_(absorptionForm), scale_(scale) {}
+        : Medium(c.phase, c.sampleEmitters, c.emission), a_(std::move(a)), b_(std::move(b)), absorptionForm_(absorptionForm), scale_(scale) {}
 
     MediumCoefficients coefficients(const vec3&, const SampledWavelengths& wl) const override {
         const SampledSpectrum a = a_->sample(wl), b = b_->sample(wl);

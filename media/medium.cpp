@@ -1,17 +1,28 @@
 #include "media/medium.h"
 
 #include "core/error.h"
+#include "media/volume_light.h"
 
 namespace iris {
 
 MediumCommon readMediumCommon(const Properties& p) {
     MediumCommon c;
-    PropertiesPtr phase = p.getObject("phase", false);
+    PropertiesPtr phase = p.getObject("phase", false), emitter = p.getObject("emitter", false);
     for (const PropertiesPtr& child : p.children()) {
+        if (child->tag() == "emitter") {  // Mitsuba 3 Medium: one nested emitter, a volumelight
+            if (emitter) failAt(child->location(), "medium has more than one <emitter> (Mitsuba 3: \"Only a single emitter can be specified per medium\")");
+            emitter = child;
+            continue;
+        }
         if (child->tag() != "phase")
-            failAt(child->location(), "unexpected unnamed <", child->tag(), "> inside <medium> (allowed: phase; volumes and spectra need a name)");
+            failAt(child->location(), "unexpected unnamed <", child->tag(), "> inside <medium> (allowed: phase, emitter; volumes and spectra need a name)");
         if (phase) failAt(child->location(), "medium has more than one <phase>");
         phase = child;
+    }
+    if (emitter) {
+        if (emitter->tag() != "emitter" || emitter->type() != "volumelight")
+            failAt(emitter->location(), "a medium's emitter must be <emitter type=\"volumelight\">");
+        c.emission = readVolumeLight(*emitter);
     }
     if (phase) {
         if (phase->tag() != "phase") failAt(p.locationOf("phase"), "parameter 'phase' must be a <phase>");
@@ -21,6 +32,11 @@ MediumCommon readMediumCommon(const Properties& p) {
     }
     c.sampleEmitters = p.getBool("sample_emitters", true);
     return c;
+}
+
+void Medium::setEmission(VolumePtr emission, const SourceLocation& where) {
+    if (emission_) failAt(where, "this medium has an emitter already (Mitsuba 3: \"A medium can only have one emitter attached\")");
+    emission_ = std::move(emission);
 }
 
 }  // namespace iris

@@ -6,7 +6,9 @@
 // (every lane) over each: free-flight distances are sampled against σ_maj and the difference
 // σ_n = σ_maj − σ_t is null scattering (delta and ratio tracking). A homogeneous medium has one
 // segment with σ_maj = σ_t (no null collisions); a grid medium one per majorant-grid cell.
-// Absorption is σ_a = σ_t − σ_s; albedo = σ_s/σ_t. Media do not emit.
+// Absorption is σ_a = σ_t − σ_s; albedo = σ_s/σ_t. A medium may emit: Mitsuba 3's `volumelight`
+// (nested in the <medium>, or attached to a shape whose interior it is) gives an emission volume j
+// (media/volume_light.h).
 // Each type registers a factory in MediumRegistry under its scene-file name.
 #pragma once
 
@@ -18,6 +20,7 @@
 #include "core/ray.h"
 #include "core/registry.h"
 #include "media/phase/phase_function.h"
+#include "media/volumes/volume.h"
 #include "spectral/spectrum.h"
 #include "spectral/wavelengths.h"
 
@@ -47,7 +50,8 @@ protected:
 
 class Medium {
 public:
-    Medium(PhaseFunctionPtr phase, bool sampleEmitters) : phase_(std::move(phase)), sampleEmitters_(sampleEmitters) {}
+    Medium(PhaseFunctionPtr phase, bool sampleEmitters, VolumePtr emission = nullptr)
+        : phase_(std::move(phase)), sampleEmitters_(sampleEmitters), emission_(std::move(emission)) {}
     virtual ~Medium() = default;
 
     /// σ_s and σ_t at the world point p for the path's wavelengths.
@@ -59,10 +63,16 @@ public:
     const PhaseFunction& phase() const { return *phase_; }
     /// Mitsuba's sample_emitters: next-event estimation from points inside the medium.
     bool sampleEmitters() const { return sampleEmitters_; }
+    /// The emitted radiance per unit length j(p) of a volumelight (media/volume_light.h), or nullptr.
+    const Volume* emission() const { return emission_.get(); }
+    /// Attaches a volumelight while the scene loads (a shape's <emitter type="volumelight"> with this
+    /// medium inside it, Mitsuba 3 Medium::set_emitter); an error at `where` if it has one already.
+    void setEmission(VolumePtr emission, const SourceLocation& where);
 
 private:
     PhaseFunctionPtr phase_;
     bool sampleEmitters_;
+    VolumePtr emission_;
 };
 
 using MediumPtr = std::shared_ptr<const Medium>;
@@ -74,6 +84,7 @@ using MediumRegistry = Registry<Medium>;
 struct MediumCommon {
     PhaseFunctionPtr phase;
     bool sampleEmitters = true;
+    VolumePtr emission;  // a nested <emitter type="volumelight">
 };
 /// Reads MediumCommon; any other nested object is an error naming its line.
 MediumCommon readMediumCommon(const Properties& p);

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "render/integrator.h"
 #include "render/scene.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -38,7 +39,7 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, c
         {"iris.rays", std::to_string(st.rays)},
         {"iris.invalid_samples", std::to_string(st.invalidSamples)},
         {"iris.interrupted", st.interrupted ? "1" : "0"},
-        {"iris.integrator", scene.description().integrator ? scene.description().integrator->type() : std::string("path")},
+        {"iris.integrator", scene.description().integrator ? scene.description().integrator->type() : std::string(kDefaultIntegrator)},
         {"iris.max_depth", std::to_string(scene.description().integrator ? scene.description().integrator->maxDepth() : -1)},
         {"iris.colorspace", outputSpace},
         {"iris.ocio_config", colors.configPath()},

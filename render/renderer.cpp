@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include "core/io/output_file.h"
+
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -12,12 +14,14 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/io/output_file.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
 #include "render/polarized_sample.h"
 #include "render/samplers/sampler_description.h"
 #include "render/stokes_film.h"
 #include "spectral/xyz.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -135,7 +139,7 @@ std::string Renderer::settingsKey() const {
                   ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
-                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : "path",
+                  ";seed=", opt_.seed, ";res=", c.width, "x", c.height, ";integrator=", integrator ? integrator->type() : kDefaultIntegrator,
                   ";maxdepth=", integrator ? integrator->maxDepth() : -1, ";scene_hash=", opt_.sceneHash,
                   ";first_sample=", opt_.firstSample, samplerKey());
 }
@@ -161,8 +165,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     const CameraDescription& camera = scene_.description().camera;
     if (!camera.sensor) fail("the scene has no sensor");
     if (film.width() != camera.width || film.height() != camera.height) fail("film and camera sizes differ");
-    const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter("gaussian");
-    const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator("path");
+    const ReconstructionFilterPtr filter = camera.filter ? camera.filter : makeFilter(kDefaultFilter);
+    const IntegratorPtr integrator = scene_.description().integrator ? scene_.description().integrator : makeIntegrator(kDefaultIntegrator);
     if (spectral && opt_.rgbMode) fail("a spectral image needs spectral mode (RGB-mode channels are not wavelength samples)");
     if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
         fail("the spectral film must have the film's size and start empty");
@@ -271,13 +275,27 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (checkpoints) {
             lastComplete = film;
             if (opt_.checkpointEvery > 0 && secondsSince(lastCheckpoint) >= opt_.checkpointEvery) {
-                film.save(opt_.checkpointPath, stateHeader());
+                // A failed periodic write (a full disk, a removed folder) must not stop the render
+                // that it is meant to protect: it is retried at the next interval.
+                try {
+                    film.save(opt_.checkpointPath, stateHeader());
+                    rs.checkpointError.clear();
+                } catch (const Error& e) {
+                    rs.checkpointError = e.what();
+                }
                 lastCheckpoint = Clock::now();
             }
         }
     }
     progress.finish();
-    if (checkpoints) lastComplete->save(opt_.checkpointPath, stateHeader());
+    if (checkpoints) {  // the final state: rescued to a fallback path if its own write fails
+        try {
+            writeWithFallback(opt_.checkpointPath, [&](const std::string& path) { lastComplete->save(path, stateHeader()); });
+            rs.checkpointError.clear();
+        } catch (const Error& e) {
+            rs.checkpointError = e.what();
+        }
+    }
 
     for (const ThreadState& ts : states) {
         rs.rays += ts.stats.rays;

@@ -53,6 +53,10 @@ struct RenderStats {
     uint32_t sppMin = 0, sppMax = 0;
     bool interrupted = false;      // stopped by cancellation before reaching spp
     bool timeLimited = false;
+    /// Why the checkpoint is not where it was asked, if it is not: a periodic write that failed is
+    /// retried at the next interval and the render goes on; the final one goes to a fallback path,
+    /// which this names (core/io/output_file.h). Empty when the last write succeeded.
+    std::string checkpointError;
 };
 
 class Renderer {

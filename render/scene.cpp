@@ -14,6 +14,7 @@
 #include "core/sphere_intersection.h"
 #include "render/instance_transform.h"
 #include "render/scene_memory.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -207,9 +208,18 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
     scene_ = scene;
 
     {
-        Properties p("bsdf", "diffuse", SourceLocation{"<default material>", 0});
+        Properties p("bsdf", kDefaultMaterial, SourceLocation{"<default material>", 0});
         defaultMaterial_ = MaterialRegistry::instance().create(p);
     }
+
+    // A few top-level spheres and cylinders are tested one after the other outside Embree (issue
+    // 37): the same double-precision test with the same ray bounds as Embree's callbacks, so the
+    // closest hit is the same (up to exact ties in float t, which Embree breaks by its traversal
+    // order), without a second BVH for user geometry and a callback per candidate.
+    size_t analytic = 0;
+    for (const ShapeDescription& s : desc_.shapes)
+        analytic += s.type == ShapeDescription::Type::Sphere || s.type == ShapeDescription::Type::Cylinder;
+    const bool flatAnalytic = analytic <= kMaxFlatShapes;
 
     vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
     for (size_t i = 0; i < desc_.shapes.size(); ++i) {
@@ -221,10 +231,17 @@ Scene::Scene(SceneDescription desc) : desc_(std::move(desc)) {
             lights_.push_back(areaLightOf(s));
             shapes_[i].areaLight = lights_.back().get();
         }
+        if (flatAnalytic && (s.type == ShapeDescription::Type::Sphere || s.type == ShapeDescription::Type::Cylinder)) {
+            rtcReleaseGeometry(geom);  // built for its checks and bounds only
+            flat_.push_back(FlatShape{unsigned(i), s.type == ShapeDescription::Type::Cylinder});
+            continue;
+        }
         attachGeometry(scene, geom, unsigned(i));
+        embreeGeometries_ = true;
         checkDevice(device, "building the scene geometry");
     }
     addInstances(lo, hi);
+    embreeGeometries_ = embreeGeometries_ || !desc_.instances.empty();
     rtcCommitScene(scene);
     checkDevice(device, "building the acceleration structure");
 
@@ -423,7 +440,17 @@ std::optional<SurfaceInteraction> Scene::intersect(const Ray& ray) const {
     rh.ray.time = 0.0f;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
+    if (embreeGeometries_) rtcIntersect1(static_cast<RTCScene>(scene_), &ctx, &rh);
+    for (const FlatShape& f : flat_) {  // as userIntersect does for Embree
+        const ShapeDescription& s = *shapes_[f.index].desc;
+        const double t = f.cylinder ? CylinderShape::hit(s, 0, rh.ray) : SphereShape::hit(s, 0, rh.ray);
+        if (!std::isfinite(t)) continue;
+        rh.ray.tfar = float(t);
+        rh.hit.u = rh.hit.v = 0.0f;
+        rh.hit.primID = 0;
+        rh.hit.geomID = f.index;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
     // Every return returns `hit`, filled in place, so that the record is never copied (NRVO).
     std::optional<SurfaceInteraction> hit;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
@@ -478,6 +505,11 @@ bool Scene::occluded(const Ray& ray) const {
     r.mask = 0xFFFFFFFFu;
     r.flags = 0;
     r.time = 0.0f;
+    for (const FlatShape& f : flat_) {  // as userOccluded does for Embree
+        const ShapeDescription& s = *shapes_[f.index].desc;
+        if (std::isfinite(f.cylinder ? CylinderShape::hit(s, 0, r) : SphereShape::hit(s, 0, r))) return true;
+    }
+    if (!embreeGeometries_) return false;
     rtcOccluded1(static_cast<RTCScene>(scene_), &ctx, &r);
     return r.tfar < 0;  // Embree sets tfar = -inf on a hit
 }

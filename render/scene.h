@@ -35,12 +35,19 @@ public:
     const std::vector<const Light*>& infiniteLights() const { return infinite_; }
     const SceneBounds& bounds() const { return bounds_; }
     size_t triangleCount() const { return triangles_; }
-    /// The Embree scene (RTCScene), for benchmarks that measure bare traversal.
+    /// The Embree scene (RTCScene), for benchmarks that measure bare traversal. Up to
+    /// kMaxFlatShapes top-level spheres and cylinders are not in it: Scene tests them itself.
     void* embreeScene() const { return scene_; }
+    static constexpr size_t kMaxFlatShapes = 8;
 
 private:
     struct ShapeData;
     struct InstanceData;
+    /// A top-level sphere or cylinder tested outside Embree (shapes_[index]).
+    struct FlatShape {
+        unsigned index;
+        bool cylinder;
+    };
     void addShapeData(const ShapeDescription& s);
     void addInstances(vec3& lo, vec3& hi);
     void hitInteraction(size_t index, unsigned prim, float b1, float b2, const Ray& ray, float t, SurfaceInteraction& si) const;
@@ -48,6 +55,8 @@ private:
     SceneDescription desc_;
     std::vector<ShapeData> shapes_;         // the top-level shapes (index = Embree geometry ID), then each group's
     std::vector<InstanceData> instances_;   // Embree geometry ID firstInstanceID_ + index
+    std::vector<FlatShape> flat_;           // the analytic shapes Scene tests itself, in shape order
+    bool embreeGeometries_ = false;         // the Embree scene holds any geometry
     std::vector<void*> groupScenes_;        // RTCScene of each shape group
     unsigned firstInstanceID_ = 0;
     std::vector<LightPtr> lights_;          // all lights incl. area lights

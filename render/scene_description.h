@@ -82,7 +82,7 @@ struct SceneDescription {
     std::vector<InstanceDescription> instances;  // placed shape groups (Scene: Embree instances)
     std::vector<std::shared_ptr<Light>> lights;  // non-area lights (point, spot, env, ...)
     CameraDescription camera;
-    IntegratorPtr integrator;  // render/integrator.h; the loader gives "path" when the scene names none
+    IntegratorPtr integrator;  // render/integrator.h; the loader gives kDefaultIntegrator (render/scene_defaults.h) when the scene names none
     int spp = 16;  // sampler sample_count
     // The sampler's sequence (render/samplers/); its pattern size is set by the renderer.
     std::string samplerName = "independent";

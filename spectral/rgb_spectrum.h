@@ -25,6 +25,8 @@ public:
     /// illuminant spectra and apply the D65 factor once (it is common to all of them).
     float shapeValue(float lambda) const { return scale_ * (grey_ ? level_ : poly_(lambda)); }
     float d65Factor() const { return d65Scale_; }
+    /// The factor m of shapeValue (shapeValue = m · sigmoid(λ), or m · level for greys).
+    float shapeScale() const { return scale_; }
     float maxValue() const override { return max_; }
     SampledSpectrum sample(const SampledWavelengths& wl) const override;
     vec3 rgbValue() const override { return rgb_; }

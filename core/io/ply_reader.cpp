@@ -8,6 +8,7 @@
 #include "core/input_file.h"
 #include "core/memory_budget.h"
 #include "core/xml/xml_values.h"
+#include "core/srgb_transfer.h"
 
 namespace iris {
 namespace {

@@ -10,6 +10,7 @@
 #include "core/input_file.h"
 #include "core/memory_budget.h"
 #include "core/xml/xml_values.h"
+#include "core/transforms.h"
 
 namespace iris {
 namespace {
@@ -232,6 +233,7 @@ private:
         checkAttributes(n, {"type", "id", "name"});
         auto props = std::make_shared<Properties>(n.name(), requiredAttr(n, "type"), loc(n));
         props->setFormatVersion(files_.back().major);
+        props->setObjectCache(scene_.cache.get());
         std::string id;
         if (n.attribute("id")) {
             id = attr(n, "id");

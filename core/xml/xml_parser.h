@@ -15,6 +15,9 @@ namespace iris {
 struct ParsedScene {
     std::string sourceFile;               // the main file (or "<string>")
     std::vector<PropertiesPtr> objects;   // top-level objects in document order
+    /// The objects the loader creates from these Properties (every Properties of the parse points
+    /// to it): a <ref>erenced object is created once. Lives as long as the parse result.
+    std::shared_ptr<ObjectCache> cache = std::make_shared<ObjectCache>();
 };
 
 /// Parse a scene file; `defines` override its <default> values (like mitsuba -D name=value).

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/srgb_transfer.h"
+
 namespace iris {
 
 namespace {
@@ -68,11 +70,6 @@ std::vector<float> parseFloatList(const std::string& s, const SourceLocation& lo
     return out;
 }
 
-float srgbToLinear(float v) {
-    // IEC 61966-2-1 sRGB EOTF.
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 vec3 parseColorValue(const std::string& str, bool srgb, const SourceLocation& loc) {
     const std::string s = trim(str);
     vec3 c;
@@ -117,27 +114,6 @@ SpectrumValue parseSpectrumValue(const std::string& str, const SourceLocation& l
         sv.values.push_back(value);
     }
     return sv;
-}
-
-mat4 lookAtMatrix(const vec3& origin, const vec3& target, const vec3& up, const SourceLocation& loc) {
-    const vec3 d = target - origin;
-    if (!(glm::length(d) > 0)) failAt(loc, "lookat: origin and target coincide");
-    const vec3 dir = glm::normalize(d);
-    const vec3 l = glm::cross(up, dir);
-    if (!(glm::length(l) > 1e-6f * glm::length(up))) failAt(loc, "lookat: up vector is zero or parallel to the view direction");
-    const vec3 left = glm::normalize(l);
-    const vec3 newUp = glm::cross(dir, left);
-    mat4 m(1.0f);
-    m[0] = vec4(left, 0.0f);
-    m[1] = vec4(newUp, 0.0f);
-    m[2] = vec4(dir, 0.0f);
-    m[3] = vec4(origin, 1.0f);
-    return m;
-}
-
-mat4 rotationMatrix(const vec3& axis, float degrees, const SourceLocation& loc) {
-    if (!(glm::length(axis) > 0)) failAt(loc, "rotate: the axis is zero");
-    return glm::rotate(mat4(1.0f), glm::radians(degrees), glm::normalize(axis));
 }
 
 std::string camelToSnake(const std::string& name) {

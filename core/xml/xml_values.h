@@ -20,16 +20,10 @@ std::vector<float> parseFloatList(const std::string& s, const SourceLocation& lo
 /// "r, g, b" or a single value (replicated). With `srgb`, values (or "#rrggbb") are sRGB-encoded
 /// and decoded to linear Rec.709 (IEC 61966-2-1 transfer function).
 vec3 parseColorValue(const std::string& s, bool srgb, const SourceLocation& loc);
-/// sRGB electro-optical transfer function (IEC 61966-2-1): code value in [0,1] → linear.
-float srgbToLinear(float v);
 
 /// "<value>" (constant) or "λ1:v1, λ2:v2, ..." pairs (nm; commas or whitespace between pairs).
 SpectrumValue parseSpectrumValue(const std::string& s, const SourceLocation& loc);
 
-/// Mitsuba's look-at frame: columns (left, up', dir, origin), so the camera looks along +z.
-mat4 lookAtMatrix(const vec3& origin, const vec3& target, const vec3& up, const SourceLocation& loc);
-/// Rotation by `degrees` about `axis` (right-handed, Rodrigues' formula).
-mat4 rotationMatrix(const vec3& axis, float degrees, const SourceLocation& loc);
 
 /// Mitsuba 0.6 parameter names to Mitsuba 3 names: "toWorld" → "to_world", "intIOR" → "int_ior".
 std::string camelToSnake(const std::string& name);

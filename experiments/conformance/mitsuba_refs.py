@@ -1,4 +1,5 @@
-"""Mitsuba 3's bsdf_spheres test scenes and their reference images (../shared/conformance/mitsuba3).
+"""Mitsuba 3's bsdf_spheres and participating_media test scenes and their reference images
+(../shared/conformance/mitsuba3).
 
 The references were written by Mitsuba's test_renders.py (`render_ref_images`, default --spp 32000;
 mitsuba-renderer/mitsuba3 src/render/tests/test_renders.py): the `moment` integrator's mean and
@@ -24,6 +25,10 @@ from iris_experiments.tools import REPO  # noqa: E402
 
 SUITE_DIR = REPO.parent / "shared" / "conformance" / "mitsuba3"
 SCENE_DIR = SUITE_DIR / "tests" / "scenes" / "bsdf_spheres"
+MEDIA_DIR = SUITE_DIR / "tests" / "scenes" / "participating_media"
+# The suites the conformance run covers by default: Mitsuba 3's bsdf_spheres and
+# participating_media test scenes (test_renders.py renders both with the same budget and rule).
+SUITES = (SCENE_DIR, MEDIA_DIR)
 REFERENCE_SPP = 32000   # test_renders.py: render_ref_images(--spp, default 32000)
 TEST_SAMPLE_BUDGET = 2_000_000   # test_renders.py: spp = 2e6 // pixel count (868 at 48x48)
 
@@ -34,9 +39,19 @@ SRGB_TO_XYZ = np.array([[0.412453, 0.357580, 0.180423],
                         [0.019334, 0.119193, 0.950227]])
 
 
-def scene_names(scene_dir: Path = SCENE_DIR) -> list[str]:
-    """Test names (`test_envmap` for test_envmap_path.xml), sorted."""
-    return sorted(p.stem.rsplit("_", 1)[0] for p in scene_dir.glob("test_*_*.xml"))
+def scene_names(scene_dir: Path | None = SCENE_DIR) -> list[str]:
+    """Test names (`test_envmap` for test_envmap_path.xml) of one suite folder, or of every suite
+    (scene_dir None), sorted within each suite."""
+    dirs = SUITES if scene_dir is None else (scene_dir,)
+    return [n for d in dirs for n in sorted(p.stem.rsplit("_", 1)[0] for p in d.glob("test_*_*.xml"))]
+
+
+def scene_dir_of(name: str) -> Path:
+    """The suite folder holding test `name`."""
+    for d in SUITES:
+        if any(p.stem.rsplit("_", 1)[0] == name for p in d.glob(f"{name}_*.xml")):
+            return d
+    raise ExperimentError(f"{SUITE_DIR}: no suite holds a scene file {name}_<integrator>.xml")
 
 
 def scene_path(name: str, scene_dir: Path = SCENE_DIR) -> Path:
@@ -78,6 +93,13 @@ def to_xyz(rgb: np.ndarray) -> np.ndarray:
 # iris's mode → the Mitsuba variant of its reference (the polarized references are the S0 of
 # `scalar_spectral_polarized`, stored like the others).
 REFERENCE_VARIANT = {"spectral": "spectral", "rgb": "rgb", "polarized": "spectral_polarized"}
+
+
+def has_reference(name: str, mode: str, scene_dir: Path = SCENE_DIR) -> bool:
+    """Whether Mitsuba's reference of test `name` exists in `mode` (the participating_media suite
+    has no polarized references)."""
+    base = scene_dir / "refs" / f"{name}_ref_{REFERENCE_VARIANT[mode]}"
+    return Path(f"{base}.exr").exists() and Path(f"{base}_var.exr").exists()
 
 
 def reference(name: str, mode: str, cache: Path, scene_dir: Path = SCENE_DIR):

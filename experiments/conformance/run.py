@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Conformance suite: iris against Mitsuba 3's own reference renders of its bsdf_spheres test scenes.
+"""Conformance suite: iris against Mitsuba 3's own reference renders of its bsdf_spheres and
+participating_media test scenes.
 
 Every scene of ../shared/conformance/mitsuba3 is rendered as written, in spectral mode (against
 <name>_ref_spectral.exr), in RGB mode (against <name>_ref_rgb.exr) and in polarized mode (against
-<name>_ref_spectral_polarized.exr, the S0 of Mitsuba's scalar_spectral_polarized); the render's per-pixel
+<name>_ref_spectral_polarized.exr, the S0 of Mitsuba's scalar_spectral_polarized; the
+participating_media suite has none, so its scenes are skipped in that mode); the render's per-pixel
 variance of the mean comes from `render --variance` (the film's second moments, in CIE XYZ). Welch's
 t-test (Jung, Hanika & Dachsbacher, JCGT 2020) runs per pixel and channel in XYZ and on block means
 (welch.py), against a Šidák threshold at significance 0.01 over all tests. A scene that iris cannot
@@ -85,7 +87,8 @@ def channel_ratios(test: np.ndarray, ref: np.ndarray) -> list[float]:
 def check_one(args, render_exe, name, mode, workdir) -> dict:
     """Render one scene in one mode and test it; returns a row of the table."""
     row = {"scene": name, "mode": mode}
-    original = mitsuba_refs.scene_path(name, args.scene_dir)
+    scene_dir = args.scene_dir or mitsuba_refs.scene_dir_of(name)
+    original = mitsuba_refs.scene_path(name, scene_dir)
     scene = original
     if args.perturb:
         scene = perturb.perturbed_copy(original, args.perturb, workdir / f"{name}_perturbed")
@@ -95,7 +98,7 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
     except RuntimeError as e:
         return {**row, "verdict": f"load error: {e}", "spp": spp}
     if args.reference == "mitsuba":
-        ref_mean, ref_sample_var = mitsuba_refs.reference(name, mode, args.cache, args.scene_dir)
+        ref_mean, ref_sample_var = mitsuba_refs.reference(name, mode, args.cache, scene_dir)
         ref_n = mitsuba_refs.REFERENCE_SPP
         ref_var = ref_sample_var / ref_n
     else:   # iris itself, unperturbed, with another seed and more samples: checks the test's size and power
@@ -141,7 +144,8 @@ def diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render) ->
     p = r["per_scale"][k]
     by, bx, c = np.unravel_index(np.argmin(p), p.shape)
     other = OTHER_MODE[mode]
-    mitsuba_other, mitsuba_other_sample_var = mitsuba_refs.reference(name, other, args.cache, args.scene_dir)
+    mitsuba_other, mitsuba_other_sample_var = mitsuba_refs.reference(name, other, args.cache,
+                                                                     args.scene_dir or mitsuba_refs.scene_dir_of(name))
     mitsuba = {mode: (ref_mean, ref_var), other: (mitsuba_other, mitsuba_other_sample_var / mitsuba_refs.REFERENCE_SPP)}
     iris = {mode: (mean, var), other: other_render[:2]}
     # Spectral and RGB rows compare Mitsuba's and iris's spectral with their RGB renders; polarized
@@ -218,14 +222,15 @@ def main(argv=None) -> int:
     ap.add_argument("--expect", help="JSON of expected verdicts (scene/mode → pass|fail|load error)")
     ap.add_argument("--expect-all", choices=("pass", "fail", "load error"), help="the verdict every scene/mode must have")
     ap.add_argument("--update-expected", help="write the verdicts of this run to this JSON file (merged into it)")
-    ap.add_argument("--scene-dir", type=Path, default=mitsuba_refs.SCENE_DIR)
+    ap.add_argument("--scene-dir", type=Path, default=None,
+                    help="one suite folder (default: every suite, bsdf_spheres and participating_media)")
     ap.add_argument("--out", default=str(tools.REPO / "experiments" / "results" / "conformance"))
     ap.add_argument("--build-dir")
     ap.add_argument("--worst", type=int, default=0, metavar="N",
                     help="diagnosis: print the N pixel tests with the smallest p-values per render")
     args = ap.parse_args(argv)
-    if not args.scene_dir.is_dir():
-        print(f"conformance: {args.scene_dir} not found (../shared is not beside the repository); skipped")
+    if not (args.scene_dir or mitsuba_refs.SUITE_DIR).is_dir():
+        print(f"conformance: {args.scene_dir or mitsuba_refs.SUITE_DIR} not found (../shared is not beside the repository); skipped")
         return SKIP
     try:
         render_exe = tools.tool("render", tools.build_dir(args.build_dir))
@@ -239,6 +244,10 @@ def main(argv=None) -> int:
             args.cache = Path(tmp) / "refs"
             for name in names:
                 for mode in modes:
+                    if args.reference == "mitsuba" and not mitsuba_refs.has_reference(
+                            name, mode, args.scene_dir or mitsuba_refs.scene_dir_of(name)):
+                        print(f"{name:42s} {mode:8s} skipped: Mitsuba has no reference in this mode", flush=True)
+                        continue
                     row = check_one(args, render_exe, name, mode, Path(tmp))
                     rows.append(row)
                     print(f"{name:42s} {mode:8s} {row['verdict'][:90]}"

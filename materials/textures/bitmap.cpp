@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/xml/xml_values.h"
+#include "core/srgb_transfer.h"
 
 namespace iris {
 

@@ -23,8 +23,8 @@ public:
         : name_(p.getString("name")), scale_(p.getFloat("scale", 1.0f)) {
         if (name_.rfind("vertex_", 0) != 0 && name_.rfind("face_", 0) != 0)
             failAt(p.locationOf("name"), "mesh_attribute: name '", name_, "' must start with \"vertex_\" or \"face_\"");
-        auto use = std::static_pointer_cast<MeshAttributeUse>(p.instance);  // only this factory sets it
-        if (!use) p.instance = use = std::make_shared<MeshAttributeUse>(MeshAttributeUse{name_, false});
+        // How the texture is used, for the per-shape check (mesh_attribute_check.cpp).
+        auto use = cachedObject<MeshAttributeUse>(p, [&] { return std::make_shared<MeshAttributeUse>(MeshAttributeUse{name_, false}); });
         use->asFloat = use->asFloat || asFloat;
     }
 

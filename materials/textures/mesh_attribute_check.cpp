@@ -22,7 +22,7 @@ void checkTexture(const Properties& tex, const TriangleMesh* mesh, const std::st
     if (!mesh) failAt(loc, "mesh_attribute '", *name, "' on ", owner, ", which has no mesh attributes");
     const MeshAttribute* a = mesh->findAttribute(*name);
     if (!a) failAt(loc, "mesh_attribute '", *name, "': ", owner, " has no such attribute (", attributeList(*mesh), ")");
-    const auto use = std::static_pointer_cast<const MeshAttributeUse>(tex.instance);  // set by the factory
+    const auto use = tex.objectCache() ? tex.objectCache()->find<MeshAttributeUse>(tex) : nullptr;  // set by the factory
     if (use && use->asFloat && a->channels != 1)
         failAt(loc, "mesh_attribute '", *name, "' of ", owner, " has ", a->channels,
                " channels, but a float parameter needs 1 (Mitsuba 3's eval_attribute_1 refuses other sizes too)");

@@ -22,7 +22,7 @@ struct EnvmapAxis {
 
     /// Texel index k (wrapped or clamped) for an integer lattice position.
     int texel(int k) const {
-        if (periodic) return ((k % texels) + texels) % texels;
+        if (periodic) return k >= 0 && k < texels ? k : ((k % texels) + texels) % texels;  // no division inside
         return std::clamp(k, 0, texels - 1);
     }
     /// The two texels around t and the weight of the second: value = (1 − f)·v[k0] + f·v[k1].

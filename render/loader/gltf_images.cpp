@@ -8,6 +8,7 @@
 
 #include "core/io/image.h"
 #include "core/xml/xml_values.h"
+#include "core/srgb_transfer.h"
 
 namespace iris::gltf {
 

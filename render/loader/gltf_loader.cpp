@@ -14,6 +14,7 @@
 #include "render/loader/gltf_mesh.h"
 #include "render/loader/gltf_scene.h"
 #include "render/sensors/sensor.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -236,7 +237,7 @@ SceneDescription buildScene(const std::string& path, const GltfOptions& options,
     addContent(doc, mat4(1.0f), options.rgbMode, scene);
     addCamera(doc, options, scene);
     addEnvironment(doc, options, scene);
-    scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", "path", {}));
+    scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", kDefaultIntegrator, {}));
     scene.spp = options.spp;
     for (const std::string& w : doc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     scene.memory = memory.take();

@@ -68,10 +68,7 @@ const Properties& instancedGroup(const Properties& p) {
 }  // namespace
 
 std::shared_ptr<const ShapeGroupDescription> loadShapeGroup(const Properties& p) {
-    if (p.instance) return std::static_pointer_cast<const ShapeGroupDescription>(p.instance);
-    std::shared_ptr<ShapeGroupDescription> g = buildGroup(p);
-    p.instance = g;
-    return g;
+    return cachedObject<ShapeGroupDescription>(p, [&] { return buildGroup(p); });
 }
 
 InstanceDescription loadInstance(const Properties& p) {

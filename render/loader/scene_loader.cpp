@@ -12,6 +12,7 @@
 #include "render/loader/shape_loader.h"
 #include "render/samplers/sampler_description.h"
 #include "render/sensors/sensor.h"
+#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -125,10 +126,12 @@ void checkMediaHaveBoundaries(const ParsedScene& parsed, const SceneDescription&
     for (const ShapeDescription& s : scene.shapes) used.insert(used.end(), {s.interior.get(), s.exterior.get()});
     for (const InstanceDescription& i : scene.instances)
         for (const ShapeDescription& s : i.group->shapes) used.insert(used.end(), {s.interior.get(), s.exterior.get()});
-    for (const PropertiesPtr& obj : parsed.objects)
-        if (obj->tag() == "medium" && obj->instance && std::find(used.begin(), used.end(), obj->instance.get()) == used.end())
+    for (const PropertiesPtr& obj : parsed.objects) {
+        const std::shared_ptr<Medium> made = obj->objectCache() ? obj->objectCache()->find<Medium>(*obj) : nullptr;
+        if (obj->tag() == "medium" && made && std::find(used.begin(), used.end(), made.get()) == used.end())
             problems.push_back(strCat(obj->location().str(), ": <medium id=\"", obj->id(), "\"> has no boundary: no shape refers to it as "
                                       "'interior' or 'exterior' and the sensor is not inside it"));
+    }
 }
 
 /// Every top-level object is loaded even after one fails, so that a file with several problems
@@ -151,7 +154,7 @@ SceneDescription build(ParsedScene parsed) {
         attempt([&] { loadObject(*obj, scene, haveSensor, haveIntegrator); });
     if (!haveSensor)  // Mitsuba's default sensor
         attempt([&] { loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene); });
-    if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", "path", {}));
+    if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", kDefaultIntegrator, {}));
     checkMediaHaveBoundaries(parsed, scene, problems);
     if (problems.empty() && scene.hasMedia() && !scene.integrator->rendersMedia())
         problems.push_back(strCat(scene.sourceFile, ": the scene has participating media, which integrator '", scene.integrator->type(),

@@ -3,6 +3,7 @@
 #include <tuple>
 
 #include "core/mesh.h"
+#include "media/volume_light.h"
 #include "materials/textures/mesh_attribute.h"
 #include "materials/textures/texture_params.h"
 #include "render/shapes/shape.h"
@@ -68,18 +69,30 @@ void checkAttributes(const Properties& tree, const ShapeDescription& s) {
         checkMeshAttributes(tree, nullptr, strCat("shape '", s.name, "' (", analyticTypeName(s.type), ")"));
 }
 
+/// A shape's <emitter type="volumelight"> makes its interior medium emit (Mitsuba 3: the emitter
+/// is given to the shape's interior medium, Medium::set_emitter); the shape itself does not.
+void attachVolumeLight(const Properties& p, const ShapeChildren& c) {
+    if (!c.interior)
+        failAt(c.emitter->location(), "a volumelight needs a shape with an interior medium, which it makes emit");
+    if (c.interior->tag() != "medium") failAt(p.locationOf("interior"), "parameter 'interior' must be a <medium>");
+    // The cache holds the medium itself (mutable while the scene loads), mediumFor a const view of it.
+    std::const_pointer_cast<Medium>(mediumFor(*c.interior))->setEmission(readVolumeLight(*c.emitter), c.emitter->location());
+}
+
 void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescription& s) {
     if (c.bsdf) {
         if (c.bsdf->tag() != "bsdf") failAt(p.locationOf("bsdf"), "parameter 'bsdf' must be a <bsdf>");
         s.material = materialFor(*c.bsdf);
         checkAttributes(*c.bsdf, s);
     }
-    if (c.emitter) {
+    if (c.emitter && c.emitter->type() == "volumelight") {
+        attachVolumeLight(p, c);
+    } else if (c.emitter) {
         if (c.emitter->tag() != "emitter") failAt(p.locationOf("emitter"), "parameter 'emitter' must be an <emitter>");
         if (s.type == ShapeDescription::Type::SdfGrid)
             failAt(c.emitter->location(), "an sdfgrid cannot be an area emitter (Mitsuba 3 does not allow it either)");
         if (c.emitter->type() != "area")
-            failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area')");
+            failAt(c.emitter->location(), "emitter type '", c.emitter->type(), "' cannot be attached to a shape (only 'area' and 'volumelight')");
         const PropertiesPtr* radiance = c.emitter->peekObject("radiance");
         if (radiance && (*radiance)->tag() == "texture") {  // Mitsuba: a texture over the shape's uv (D65-lit in spectral mode)
             s.emissionTexture = getSpectrumTexture(*c.emitter, "radiance", SpectrumKind::Illuminant);
@@ -99,17 +112,11 @@ void attachChildren(const Properties& p, const ShapeChildren& c, ShapeDescriptio
 }  // namespace
 
 MediumPtr mediumFor(const Properties& medium) {
-    if (medium.instance) return std::static_pointer_cast<const Medium>(medium.instance);
-    MediumPtr m = MediumRegistry::instance().create(medium);
-    medium.instance = std::const_pointer_cast<Medium>(m);
-    return m;
+    return cachedObject<Medium>(medium, [&] { return std::const_pointer_cast<Medium>(MediumRegistry::instance().create(medium)); });
 }
 
 MaterialPtr materialFor(const Properties& bsdf) {
-    if (bsdf.instance) return std::static_pointer_cast<const Material>(bsdf.instance);
-    MaterialPtr m = MaterialRegistry::instance().create(bsdf);
-    bsdf.instance = std::const_pointer_cast<Material>(m);
-    return m;
+    return cachedObject<Material>(bsdf, [&] { return std::const_pointer_cast<Material>(MaterialRegistry::instance().create(bsdf)); });
 }
 
 ShapeDescription loadShape(const Properties& p) {

@@ -12,6 +12,8 @@ IRIS_HINT(MaterialRegistry, "hair", "iris has no hair BSDF: use roughconductor o
 IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sun", "iris has no sun model: use 'directional'");
+IRIS_HINT(LightRegistry, "volumelight", "a volumelight belongs to a medium: nest it in the <medium>, or attach it to a shape "
+                                       "whose interior medium it then makes emit");
 IRIS_HINT(IntegratorRegistry, "bdpt", "use 'path' (unbiased, more noise on caustics)");
 IRIS_HINT(IntegratorRegistry, "ptracer", "iris traces from the camera only: use 'path' (the same expected image)");
 IRIS_HINT(IntegratorRegistry, "aov", "iris writes no AOV images: the 'moment' wrapper gives per-pixel first and second moments");

@@ -113,6 +113,8 @@ TEST(HostileFiles, BadOutputPathsAndUsageAreRefusedBeforeTheSceneLoads) {
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --checkpoint /nonexistent/c.ckpt"), 2,
                   "--checkpoint /nonexistent/c.ckpt: the folder /nonexistent does not exist");
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 0"), 2, "--spp 0 needs --time-limit");
+    expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 1 --output-space no_such_space"), 2,
+                  "--output-space: colour space 'no_such_space' is not in");
     expectRefusal(render(missingScene, "-o " + path("ok.exr") + " --spp 1"), 1, "no_such_scene.xml: cannot open scene file: file not found");
 }
 
@@ -139,6 +141,30 @@ TEST(HostileFiles, AFailedFinalWriteIsRescuedToAPathTheErrorNames) {
     int rescuedFiles = 0;
     for (const auto& e : fs::directory_iterator(work)) rescuedFiles += e.path().filename().string().rfind("iris-rescued-", 0) == 0;
     EXPECT_EQ(rescuedFiles, 1);
+}
+
+// A checkpoint that cannot be written where asked loses nothing either: the render goes on, the
+// image is written, and the final film state goes to a fallback path that the error names and from
+// which the render resumes.
+TEST(HostileFiles, AFailedCheckpointWriteIsRescuedAndTheImageStillWritten) {
+    const std::string work = path("rescue_checkpoint");
+    fs::remove_all(work);
+    fs::create_directories(work + "/out");
+    const std::string out = work + "/out/image.exr", ckpt = work + "/out/state.ckpt";
+    const std::string cmd = appPath("render") + " " + sourcePath("scenes/default.xml") + " -D res=16 --quiet --no-png -o " + out +
+                            " --checkpoint " + ckpt;
+    const RunResult r = runCommand("cd " + work + " && IRIS_FAULT_UNWRITABLE=" + ckpt + " " + cmd + " --spp 2", kHangSeconds);
+    EXPECT_EQ(r.exitCode, 1) << r.stderrText;
+    EXPECT_EQ(readImage(out).width, 16);  // the image is where it was asked
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.stderrText, m, std::regex("--checkpoint " + ckpt + ": .*written to (\\S+) instead"))) << r.stderrText;
+    const std::string rescued = m[1];
+    EXPECT_FALSE(fs::exists(ckpt));
+    // The rescued state is a real checkpoint: the render resumes from it to 4 samples.
+    const RunResult resumed = runCommand("cd " + work + " && " + appPath("render") + " " + sourcePath("scenes/default.xml") +
+                                             " -D res=16 --quiet --no-png -o " + out + " --checkpoint " + rescued + " --resume --spp 4",
+                                         kHangSeconds);
+    EXPECT_EQ(resumed.exitCode, 0) << resumed.stderrText;
 }
 
 // Item 5: --memory-limit bounds a scene of many spheres, from the size of its XML before it is

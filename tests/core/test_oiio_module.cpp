@@ -14,6 +14,7 @@
 #include "tests/support/app_runner.h"
 #include "core/io/image.h"
 #include "core/io/oiio_loader.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "materials/textures/bitmap.h"
 

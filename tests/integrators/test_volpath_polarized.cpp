@@ -136,3 +136,19 @@ TEST(VolPathPolarized, SingleRayleighScatteringAt90DegreesIsPolarizedNormalToThe
     const test::ImageMean polarized = meanOverRenders(xml, true, 4, 30, 1);
     EXPECT_LT(std::abs(welchT(spectral, polarized)), 5.0);
 }
+
+TEST(VolPathPolarized, AnEmittingScatteringMediumKeepsItsClosedForm) {
+    // The camera inside an unbounded medium of σ_t = 1, albedo 0.8 with a volumelight j = 0.3
+    // (tests/integrators/test_volpath_emission.cpp): L = j / σ_a = 1.5 in polarized mode too, the
+    // emission entering the Stokes rows unpolarized (addMediumEmission).
+    const std::string xml = R"(<scene version="3.0.0">
+  <integrator type="volpath"/>
+  <medium type="homogeneous" id="m"><float name="sigma_t" value="1"/><float name="albedo" value="0.8"/>
+    <emitter type="volumelight"><float name="radiance" value="0.3"/></emitter></medium>
+  <sensor type="perspective"><float name="fov" value="30"/><ref name="medium" id="m"/>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film></sensor>
+</scene>)";
+    const test::ImageMean m = meanOverRenders(xml, true, 32, 40, 1, 8);
+    // A float volumelight radiance is D65 with Y = value (docs/conventions.md): Y = 0.3 / 0.2.
+    EXPECT_NEAR(m.mean, 1.5, 5 * m.stderr_ + 5e-3);
+}

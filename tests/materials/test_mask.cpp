@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/io/image.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"

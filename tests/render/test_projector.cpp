@@ -10,6 +10,7 @@
 
 #include "core/io/image.h"
 #include "render/lights/light.h"
+#include "spectral/color_space.h"
 #include "render/loader/scene_loader.h"
 #include "render/sensors/perspective.h"
 #include "spectral/wavelengths.h"
@@ -75,7 +76,7 @@ TEST(Projector, SendsAlongEachCameraRayThePixelThatCameraSees) {
     std::remove(path.c_str());
 }
 
-double wallY(const std::string& projectorParams, bool rgb) {
+test::ImageMean wallMean(const std::string& projectorParams, bool rgb, int channel, int spp = 4) {
     // A diffuse wall of albedo 0.5 at distance 2 facing a camera and a projector at the same place
     // (camera fov 30°, projector 50°: every pixel is lit). Radiance ρ/π · π·scale·E·(2²/z²) at z = 2.
     const std::string xml = R"(<scene version="3.0.0">
@@ -89,8 +90,10 @@ double wallY(const std::string& projectorParams, bool rgb) {
   <emitter type="projector"><float name="fov" value="50"/>
     <transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, 1" up="0, 1, 0"/></transform>
 )" + projectorParams + "</emitter></scene>";
-    return test::imageMean(test::renderXml(xml, 6, 4, 4, 5, rgb), 1).mean;
+    return test::imageMean(test::renderXml(xml, 6, 4, spp, 5, rgb), channel);
 }
+
+double wallY(const std::string& projectorParams, bool rgb) { return wallMean(projectorParams, rgb, 1).mean; }
 
 TEST(Projector, LightsADiffuseWallWithRhoTimesScaleTimesE) {
     const std::string params = "<float name=\"irradiance\" value=\"0.2\"/><float name=\"scale\" value=\"1.5\"/>";
@@ -101,6 +104,30 @@ TEST(Projector, LightsADiffuseWallWithRhoTimesScaleTimesE) {
         // The test can fail: without Mitsuba's π factor the wall would be 0.0375/π.
         EXPECT_GT(std::abs(y - 0.0375 / kPi), 0.01);
     }
+}
+
+TEST(Projector, AColouredTextureLightsAWhiteWallAlikeInBothModes) {
+    // Mitsuba 3 reads the texture with props.texture (a bitmap is a reflectance-upsampled colour in
+    // spectral variants) and multiplies by D65·scale: on a white wall the spectral render is the
+    // RGB one. A reference whose two variants differ there (issue 33: 1.19/0.95/0.91) is the odd one out.
+    const std::string path = testing::TempDir() + "projector_colour.exr";
+    Image img(2, 2, 3);
+    for (int i = 0; i < 4; ++i) img.pixels[3 * i] = 0.8f, img.pixels[3 * i + 1] = 0.3f, img.pixels[3 * i + 2] = 0.1f;
+    writeEXR(path, img);
+    const std::string params = "<texture type=\"bitmap\" name=\"irradiance\"><string name=\"filename\" value=\"" + path +
+                               "\"/></texture><float name=\"scale\" value=\"1.5\"/>";
+    // The RGB-mode film holds linear Rec.709, the spectral one CIE XYZ: compare in XYZ.
+    dvec3 rgb;
+    for (int c = 0; c < 3; ++c) {
+        rgb[c] = wallMean(params, true, c).mean;
+        EXPECT_NEAR(rgb[c], 0.5 * 1.5 * (c == 0 ? 0.8 : c == 1 ? 0.3 : 0.1) / 4, 1e-4) << "channel " << c;
+    }
+    const dvec3 xyz = linearRec709ToXYZ(rgb);
+    for (int c = 0; c < 3; ++c) {
+        const test::ImageMean spectral = wallMean(params, false, c, 256);
+        EXPECT_NEAR(spectral.mean, xyz[c], 5 * spectral.stderr_ + 2e-3 * xyz[c]) << "XYZ channel " << c;
+    }
+    std::remove(path.c_str());
 }
 
 TEST(Projector, WrongProjectorsAreRefusedWithTheirLine) {

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "render/loader/scene_loader.h"
 #include "core/xml/xml_parser.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "core/registry.h"
 #include "core/source_tree.h"
@@ -232,7 +233,7 @@ TEST(SceneLoader, ValuesAndSpectra) {
     EXPECT_NEAR(s.shapes[0].emission->eval(550.0f), 0.5f, 1e-6f);
     EXPECT_GT(s.shapes[1].emission->eval(550.0f), 0.0f);
     {
-        // A float radiance becomes whatever Properties::getSpectrum makes of a float illuminant.
+        // A float radiance becomes whatever getSpectrum (spectral/spectrum_params.h) makes of a float illuminant.
         Properties ref("emitter", "area", SourceLocation{"ref.xml", 1});
         ref.set("radiance", 2.5f, SourceLocation{"ref.xml", 1});
         const SpectrumPtr expected = getSpectrum(ref, "radiance", SpectrumKind::Illuminant);

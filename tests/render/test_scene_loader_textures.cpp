@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/io/image.h"
 #include "render/loader/scene_loader.h"
+#include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "core/registry.h"
 #include "materials/textures/bitmap.h"

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/ray.h"
@@ -104,6 +105,67 @@ TEST(SphereIntersection, ShadowRaysStopAtTheSphereAndNotBefore) {
     ASSERT_TRUE(h.has_value());
     EXPECT_NEAR(h->t, 4.0f, 1e-6f);
     EXPECT_NEAR(h->ng.z, -1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace iris
+
+namespace iris {
+namespace {
+
+/// A scene of three spheres, a cylinder and a floor rectangle, plus `extra` tiny spheres far below
+/// the floor that no test ray reaches: with more than Scene::kMaxFlatShapes analytic shapes all of
+/// them go to Embree as user geometry, with fewer Scene tests them itself.
+std::string flatTestScene(int extra) {
+    std::string xml = "<scene version=\"3.0.0\">"
+                      "<shape type=\"sphere\"><point name=\"center\" x=\"-1.1\" y=\"1\" z=\"0\"/><float name=\"radius\" value=\"1\"/></shape>"
+                      "<shape type=\"sphere\"><point name=\"center\" x=\"1.1\" y=\"1\" z=\"0\"/><float name=\"radius\" value=\"1\"/></shape>"
+                      "<shape type=\"sphere\"><point name=\"center\" x=\"0\" y=\"0.5\" z=\"1.2\"/><float name=\"radius\" value=\"0.6\"/>"
+                      "<boolean name=\"flip_normals\" value=\"true\"/></shape>"
+                      "<shape type=\"cylinder\"><point name=\"p0\" x=\"0\" y=\"0\" z=\"-1.5\"/><point name=\"p1\" x=\"0\" y=\"2.5\" z=\"-1.5\"/>"
+                      "<float name=\"radius\" value=\"0.3\"/></shape>"
+                      "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"20\"/><rotate x=\"1\" angle=\"-90\"/></transform></shape>";
+    for (int i = 0; i < extra; ++i)
+        xml += "<shape type=\"sphere\"><point name=\"center\" x=\"" + std::to_string(3 * i) +
+               "\" y=\"-500\" z=\"0\"/><float name=\"radius\" value=\"0.01\"/></shape>";
+    return xml + "</scene>";
+}
+
+TEST(SphereIntersection, AFewAnalyticShapesTestedOutsideEmbreeGiveEmbreesHits) {
+    // Up to Scene::kMaxFlatShapes top-level spheres and cylinders are tested one after the other
+    // by Scene itself (issue 37) with Embree's callback test and bounds: the closest hit, its
+    // point, normal and shape, and every shadow-ray answer are those of the same shapes traced
+    // as Embree user geometry (forced here by far-away extra spheres beyond the limit).
+    const Scene flat(loadSceneFromString(flatTestScene(0), "."));
+    const Scene embree(loadSceneFromString(flatTestScene(int(Scene::kMaxFlatShapes)), "."));
+    Pcg32 rng(3, 5);
+    int hits = 0, shadowed = 0;
+    for (int i = 0; i < 20000; ++i) {
+        // From anywhere above the floor towards a point among the shapes (grazing rays included).
+        const vec3 o(rng.uniform() * 8 - 4, 0.01f + rng.uniform() * 4, rng.uniform() * 8 - 4);
+        const vec3 target(rng.uniform() * 5 - 2.5f, rng.uniform() * 2.5f, rng.uniform() * 4 - 2);
+        const vec3 d = target - o;
+        const Ray ray(o, d * (0.5f + rng.uniform()));
+        const auto a = flat.intersect(ray), b = embree.intersect(ray);
+        ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i;
+        if (a) {
+            ++hits;
+            ASSERT_EQ(a->shapeIndex, b->shapeIndex) << "ray " << i;
+            ASSERT_EQ(a->t, b->t) << "ray " << i;
+            ASSERT_EQ(a->p, b->p) << "ray " << i;
+            ASSERT_EQ(a->ng, b->ng) << "ray " << i;
+            ASSERT_EQ(a->dpdu, b->dpdu) << "ray " << i;
+            ASSERT_EQ(a->uv, b->uv) << "ray " << i;
+        }
+        const Ray segment(o, d, 1.0f);  // to the target point
+        const bool oa = flat.occluded(segment);
+        ASSERT_EQ(oa, embree.occluded(segment)) << "ray " << i;
+        shadowed += oa;
+    }
+    std::printf("flat vs Embree: %d hits, %d shadowed of 20000\n", hits, shadowed);
+    EXPECT_GT(hits, 15000);
+    EXPECT_GT(shadowed, 3000);
+    EXPECT_LT(shadowed, 17000);
 }
 
 }  // namespace
