@@ -30,6 +30,8 @@
 #include "render/scene.h"
 #include "render/samplers/sampler_description.h"
 #include "render/scene_hash.h"
+#include "render/stokes_film.h"
+#include "render/stokes_output.h"
 #include "spectral/color_management.h"
 
 #include <unistd.h>
@@ -110,8 +112,13 @@ Sampling
   --seed N                 random seed (default 0); images are identical for any --threads
   --threads N              worker threads (default: all cores)
 Spectral transport
-  --mode spectral|rgb      spectral (default): N sampled wavelengths per path, film in CIE XYZ;
-                           rgb: 3 fixed channel wavelengths, values used as linear Rec.709 RGB
+  --mode spectral|rgb|polarized
+                           spectral (default): N sampled wavelengths per path, film in CIE XYZ;
+                           rgb: 3 fixed channel wavelengths, values used as linear Rec.709 RGB;
+                           polarized: spectral with a Stokes vector per wavelength and Mueller
+                           matrices at every interaction, the image is S0 (docs/polarization.md;
+                           the default for a scene whose integrator is Mitsuba 3's stokes, which
+                           adds the channels S0.R ... S3.B)
   --spectral-samples N     wavelengths per path in spectral mode, 1..32 (default 4)
   --rgb-wavelengths R,G,B  channel wavelengths in nm for RGB mode (default %s)
   --uniform-wavelengths    sample wavelengths uniformly instead of by visible importance
@@ -221,7 +228,7 @@ int main(int argc, char** argv) {
     std::string scenePath, output = "out.exr", outputSpace = kColorSpaceLinearRec709, ocioConfig, display, view;
     std::string checkpoint, spectralOutput, variancePath;
     double spectralBinWidth = 5.0;
-    bool writePng = true, quiet = false, resume = false, sppRange = false;
+    bool writePng = true, quiet = false, resume = false, sppRange = false, modeGiven = false;
     int sppArg = -1, rangeEnd = 0;  // --spp, and the end of --spp-range
     std::map<std::string, std::string> defines;
     GltfOptions gltfOptions;
@@ -283,9 +290,11 @@ int main(int argc, char** argv) {
             if (opt.threads < 0) usageError("--threads must be >= 0");
         } else if (a == "--mode") {
             const std::string m = value();
-            if (m == "rgb") opt.rgbMode = true;
-            else if (m == "spectral") opt.rgbMode = false;
-            else usageError("invalid value '" + m + "' for --mode (expected rgb or spectral)");
+            modeGiven = true;
+            if (m == "rgb") opt.rgbMode = true, opt.polarized = false;
+            else if (m == "spectral") opt.rgbMode = false, opt.polarized = false;
+            else if (m == "polarized") opt.rgbMode = false, opt.polarized = true;
+            else usageError("invalid value '" + m + "' for --mode (expected rgb, spectral or polarized)");
         } else if (a == "--spectral-samples") {
             opt.spectralSamples = parseInt(a, value());
             if (opt.spectralSamples < 1 || opt.spectralSamples > kMaxWavelengths)
@@ -364,6 +373,10 @@ int main(int argc, char** argv) {
         raiseAtStartIfAsked();
         SceneDescription desc = loadSceneFile(scenePath, defines, gltfOptions);
         opt.sceneHash = sceneHash(scenePath, defines);  // after the loader, whose errors name file:line
+        // A scene that asks for Mitsuba 3's stokes integrator renders polarized unless --mode says otherwise.
+        if (!modeGiven && desc.integrator && desc.integrator->type() == "stokes") opt.polarized = true;
+        const bool stokesOutput = opt.polarized && desc.integrator && desc.integrator->type() == "stokes";
+        if (stokesOutput && !checkpoint.empty()) fail("the stokes integrator's channels are not kept in checkpoints: drop --checkpoint");
         const Scene scene(std::move(desc));
         opt.onTileFinished = signalHookFromEnvironment();
         const Renderer renderer(scene, opt);
@@ -374,9 +387,12 @@ int main(int argc, char** argv) {
         std::optional<SpectralFilm> spectral;
         if (!spectralOutput.empty()) spectral.emplace(film.width(), film.height(), SpectralBins(spectralBinWidth));
 
+        std::optional<StokesFilm> stokes;
+        if (stokesOutput) stokes.emplace(film.width(), film.height());
+
         std::signal(SIGINT, onSignal);
         std::signal(SIGTERM, onSignal);
-        const RenderStats st = renderer.render(film, &gCancel, spectral ? &*spectral : nullptr);
+        const RenderStats st = renderer.render(film, &gCancel, spectral ? &*spectral : nullptr, stokes ? &*stokes : nullptr);
         std::signal(SIGINT, SIG_DFL);
         std::signal(SIGTERM, SIG_DFL);
 
@@ -385,7 +401,8 @@ int main(int argc, char** argv) {
         const ImageMetadata meta = renderMetadata(scene, scenePath, renderer, opt, st, colors, outputSpace);
         std::string errors;  // outputs that could not be written where asked (each was rescued or reported)
         if (!pngOnly) {
-            const Image exr = scene.description().integrator->type() == "moment" ? withMoments(out, film) : out;
+            const Image main = scene.description().integrator->type() == "moment" ? withMoments(out, film) : out;
+            const Image exr = stokes ? appendChannels(main, stokesImage(*stokes, colors, outputSpace)) : main;
             writeOrRescue(output, [&](const std::string& p) { writeEXR(p, exr, meta); }, errors);
         }
         if (spectral) {

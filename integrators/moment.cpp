@@ -23,6 +23,11 @@ public:
                            PathStats& stats, SplatFilm& splats) const override {
         return nested_->sample(scene, ray, wl, sampler, arena, stats, splats);
     }
+    bool hasPolarizedForm() const override { return nested_->hasPolarizedForm(); }
+    void LiStokes(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
+                  StokesEstimate& est) const override {
+        nested_->LiStokes(scene, ray, wl, sampler, arena, stats, est);
+    }
 
 private:
     IntegratorPtr nested_;

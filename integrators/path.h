@@ -29,6 +29,10 @@ public:
     SampledSpectrum Li(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
                        PathStats& stats) const override;
     const PathParams& params() const { return params_; }
+    /// The polarized form (integrators/path_polarized.cpp, docs/polarization.md).
+    bool hasPolarizedForm() const override { return true; }
+    void LiStokes(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
+                  StokesEstimate& est) const override;
 
 private:
     /// Next-event estimation at si with MIS (power heuristic): one light sample, its occlusion test.

@@ -16,9 +16,6 @@ float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from,
     return pmf * light.pdfLi(from, d, hit);
 }
 
-namespace {
-
-/// chooseLight and the chosen light's sample from p; nullopt when there is nothing to light with.
 std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
                                                    const SampledWavelengths& wl) {
     const LightChoice choice = chooseLight(scene, uLight);
@@ -31,8 +28,6 @@ std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec
     s.lightPdf = choice.pmf * ls->pdf;
     return s;
 }
-
-}  // namespace
 
 std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
                                                       const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,

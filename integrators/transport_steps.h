@@ -56,6 +56,11 @@ struct VertexLightSample {
     SampledSpectrum f;      // f(wo, wi) · |cos θi| at a surface, the phase function in a medium
 };
 
+/// chooseLight and the chosen light's sample from point p, its scattering terms (f, scatterPdf) not
+/// yet set; nullopt when there is nothing to light with.
+std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
+                                                   const SampledWavelengths& wl);
+
 /// Next-event estimation's sample at surface point p (geometric normal ng) with shading frame
 /// `frame`, BSDF `bsdf` and wo (local), drawing its light with uLight and its point with uL:
 /// nullopt when the light gives nothing there, the BSDF is black towards it, or (strictNormals)

@@ -37,20 +37,30 @@
 // 3's eval_null_transmission in sample_emitter); any other surface blocks them. Mitsuba 0.6 differs:
 // its volpath counts a null crossing as an interaction on the path and on shadow rays
 // (docs/media.md). A medium with a volumelight emits at every collision (addMediumEmission).
+// Polarized mode (LiStokes, docs/polarization.md) runs the same walk with the throughput as Stokes
+// rows (integrators/stokes_throughput.h), BSDFs and phase functions as Mueller matrices and shadow
+// rays collecting the matrices of the pass-through surfaces they cross (integrators/
+// volpath_stokes.h); the `Polarized = false` instantiation is the spectral walk, unchanged.
 #include "core/error.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
 #include "integrators/transport_steps.h"
+#include "integrators/volpath_stokes.h"
 #include "materials/material.h"
+#include "spectral/stokes_basis.h"
 
 namespace iris {
 namespace {
 
 constexpr uint32_t kPassThroughLobe = kBSDFNull | kBSDFTransmission | kBSDFSpecular;
 
-/// What a path carries besides its position (see the file comment).
+/// What a path carries besides its position (see the file comment): its radiance and throughput
+/// as spectra, or in polarized mode as a Stokes estimate and Stokes rows.
+template <bool Polarized>
 struct PathState {
-    SampledSpectrum L, beta, rU, rL;
+    std::conditional_t<Polarized, StokesVector, SampledSpectrum> L;
+    std::conditional_t<Polarized, StokesThroughput, SampledSpectrum> beta;
+    SampledSpectrum rU, rL;
     int depth = 0;
     bool specularBounce = false;
     float etaScale = 1.0f;
@@ -65,6 +75,53 @@ const Medium* mediumAfter(const Scene& scene, const SurfaceInteraction& si, cons
     const ShapeDescription& s = scene.shape(si.shapeIndex);
     if (!s.interior && !s.exterior) return current;
     return glm::dot(d, si.ng) > 0 ? s.exterior.get() : s.interior.get();
+}
+
+/// The weight a shadow ray along `dir` keeps when it crosses surface si (Mitsuba 3 volpath.cpp
+/// sample_emitter: eval_null_transmission at the hit): applied to T; false when the surface blocks.
+/// Polarized: T is a ShadowMueller and the weight the BSDF's nullTransmissionMueller.
+template <typename Transmittance>
+bool crossSurface(const SurfaceInteraction& si, const vec3& dir, const SampledWavelengths& wl, Arena& arena, Transmittance& T) {
+    if constexpr (std::is_same_v<Transmittance, SampledSpectrum>) {
+        const std::optional<SampledSpectrum> w = crossingWeight(si, dir, wl, arena);  // transport_steps.h
+        if (!w || w->isBlack()) return false;
+        T *= *w;
+        return true;
+    } else {
+        if (!si.material->transmitsShadowRays()) return false;
+        const ShadingPoint sp = shadingPointAt(si);
+        SampledWavelengths own = wl;  // a nested dispersive BSDF may end lanes: of this query, not of the path
+        const BSDF* bsdf = si.material->getBSDF(sp, own, arena);
+        if (!bsdf) return true;  // a boundary only
+        const std::optional<MuellerSpectrum> w = bsdf->nullTransmissionMueller(sp.shading.toLocal(-dir));
+        if (!w) return false;
+        T.cross(*w, sp.shading);
+        return !T.isBlack();
+    }
+}
+
+/// A surface that passes the ray on unchanged, which volpath treats as a boundary (no bounce, no
+/// random numbers): no BSDF, or only a pass-through lobe of weight 1 (`null`; not a polarizing
+/// filter, whose lobe is sampled like any other).
+template <bool Polarized>
+bool passesUnchanged(const BSDF* bsdf, const vec3& wo) {
+    if (!bsdf) return true;
+    if (bsdf->flags() != (kBSDFNull | kBSDFTransmission | kBSDFSpecular)) return false;
+    if constexpr (Polarized) {
+        const std::optional<MuellerSpectrum> m = bsdf->nullTransmissionMueller(wo);
+        if (!m || m->depolarizing()) return false;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                for (int k = 0; k < m->size(); ++k)
+                    if ((*m)(i, j)[k] != (i == j ? 1.0f : 0.0f)) return false;
+        return true;
+    } else {
+        const std::optional<SampledSpectrum> t = bsdf->nullTransmission(wo);
+        if (!t) return false;
+        for (int k = 0; k < t->size(); ++k)
+            if ((*t)[k] != 1.0f) return false;
+        return true;
+    }
 }
 
 /// Per-path random numbers for the variable number of tracking steps: a generator seeded from two
@@ -127,72 +184,105 @@ public:
     bool rendersMedia() const override { return true; }
 
     SampledSpectrum Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
-                       PathStats& stats) const override;
+                       PathStats& stats) const override {
+        const int n = wl.size();
+        PathState<false> ps{SampledSpectrum(n, 0.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f)};
+        walk(scene, cameraRay, ps, wl, sampler, arena, stats);
+        return ps.L;
+    }
+    bool hasPolarizedForm() const override { return true; }
+    void LiStokes(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler, Arena& arena, PathStats& stats,
+                  StokesEstimate& est) const override {
+        const int n = wl.size();
+        const vec3 basis = est.rows > 1 ? est.basis : stokesBasis(-glm::normalize(cameraRay.d));
+        PathState<true> ps{StokesVector(n), StokesThroughput(est.rows, n, basis), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f)};
+        walk(scene, cameraRay, ps, wl, sampler, arena, stats);
+        for (int k = 0; k < est.rows; ++k) est.S.s[k] += ps.L.s[k];
+    }
 
 private:
+    /// The path from the camera ray (Li's loop; the file comment).
+    template <bool P>
+    void walk(const Scene& scene, const Ray& cameraRay, PathState<P>& ps, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+              PathStats& stats) const;
     /// The denominator of a contribution from the pdf ratios r (see the file comment).
     float reduce(const SampledSpectrum& r, int h, const SampledWavelengths& wl) const {
         return spectralMIS_ && !wl.secondaryTerminated() ? r.average() : r[h];
     }
     /// Delta tracking from ray.o to tHit; on a real scattering event samples the phase function and
     /// NEE, updates `ray` and returns true.
-    bool trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState& ps, SampledWavelengths& wl, Sampler& sampler,
+    template <bool P>
+    bool trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState<P>& ps, SampledWavelengths& wl, Sampler& sampler,
                      Pcg32& rng, Arena& arena, PathStats& stats) const;
     /// A medium scattering at p: next-event estimation and phase sampling (returns false when the
     /// path ends there).
-    bool scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState& ps, SampledWavelengths& wl,
+    template <bool P>
+    bool scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState<P>& ps, SampledWavelengths& wl,
                          Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const;
     /// Emission reached by a BSDF/phase-sampled ray: infinite lights (si = nullptr) or the area
     /// light at si.
-    void addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
+    template <bool P>
+    void addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState<P>& ps,
                      const SampledWavelengths& wl) const;
     /// A volumelight's emission at a collision at p (any kind: real or null), sampled with density
     /// T_maj σ_maj in lane h: β T_maj j / (T_maj[h] σ_maj[h]), weighted over the lanes as the
     /// unidirectional strategy (pbrt-v4 §14.2.2, emission at every majorant collision; media/
     /// volume_light.h for j). Volume emitters are reached only this way (no next-event estimation).
-    void addMediumEmission(const vec3& p, const MajorantSegment& seg, const SampledSpectrum& tm, int h, PathState& ps,
+    /// Polarized: the emission is unpolarized (Mitsuba 3's emitters).
+    template <bool P>
+    void addMediumEmission(const vec3& p, const MajorantSegment& seg, const SampledSpectrum& tm, int h, PathState<P>& ps,
                            const SampledWavelengths& wl) const {
         const Volume* j = ps.medium->emission();
         if (!j || (params_.hideEmitters && ps.depth == 0)) return;
         const float pdf = tm[h] * seg.sigmaMaj[h];
         const SampledSpectrum rE = ps.rU * tm * seg.sigmaMaj / pdf;
         if (!(pdf > 0) || rE.isBlack()) return;
-        ps.L += ps.beta * tm * j->eval(p, wl) / pdf / reduce(rE, h, wl);
+        if constexpr (P) ps.beta.addUnpolarized(tm * j->eval(p, wl) / pdf, 1.0f / reduce(rE, h, wl), ps.L);
+        else ps.L += ps.beta * tm * j->eval(p, wl) / pdf / reduce(rE, h, wl);
     }
     /// Russian roulette after a real scattering event (pbrt-v4 §14.2.3), on the MIS-weighted
     /// throughput with radiance scaling undone; u is drawn at every event. False: the path ends.
-    bool survivesRoulette(PathState& ps, int h, const SampledWavelengths& wl, float u) const {
+    template <bool P>
+    bool survivesRoulette(PathState<P>& ps, int h, const SampledWavelengths& wl, float u) const {
         if (ps.depth < params_.rrDepth) return true;
-        const float q = rouletteSurvival((ps.beta * ps.etaScale).maxValue() / reduce(ps.rU, h, wl), u);
+        float m;
+        if constexpr (P) m = (ps.beta.intensity() * ps.etaScale).maxValue();  // unpolarized weight (Mitsuba 3)
+        else m = (ps.beta * ps.etaScale).maxValue();
+        const float q = rouletteSurvival(m / reduce(ps.rU, h, wl), u);
         if (q == 0.0f) return false;
-        ps.beta /= q;
+        if constexpr (P) ps.beta *= 1.0f / q;
+        else ps.beta /= q;
         return true;
     }
     /// Surface scattering; returns false when the path ends.
-    bool scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
+    template <bool P>
+    bool scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState<P>& ps,
                           SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const;
 
-    /// Next-event estimation's contribution of the light sample s taken at p: the surface point si,
-    /// or (si = nullptr) a point in ps.medium; its shadow ray's transmittance and the MIS ratios.
-    SampledSpectrum lightContribution(const Scene& scene, const vec3& p, const SurfaceInteraction* si, const VertexLightSample& s,
-                                      int h, const PathState& ps, const SampledWavelengths& wl, Pcg32& rng, Arena& arena,
-                                      PathStats& stats) const;
+    /// Next-event estimation's contribution of the light sample s taken at p — the surface point
+    /// si, or (si = nullptr) a point in ps.medium — added to ps.L: its shadow ray's transmittance
+    /// and the MIS ratios. Polarized: `v` is the vertex's Mueller matrix towards the light and the
+    /// rows' basis its output basis.
+    template <bool P>
+    void addLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, const VertexLightSample& s, const VertexMueller* v,
+                  int h, PathState<P>& ps, const SampledWavelengths& wl, Pcg32& rng, Arena& arena, PathStats& stats) const;
     /// Transmittance from `o` towards `target` (or to infinity along `dir`), by ratio tracking
     /// through media and pass-through surfaces; 0 when an opaque surface blocks. Updates the
-    /// strategies' pdf ratios rU, rL along the way.
-    SampledSpectrum shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist, const Medium* medium, int h,
-                                        SampledSpectrum& rU, SampledSpectrum& rL, const SampledWavelengths& wl, Pcg32& rng,
-                                        Arena& arena, PathStats& stats) const;
+    /// strategies' pdf ratios rU, rL along the way. T: SampledSpectrum, or a ShadowMueller.
+    template <typename Transmittance>
+    Transmittance shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist, const Medium* medium, int h,
+                                      SampledSpectrum& rU, SampledSpectrum& rL, const SampledWavelengths& wl, Pcg32& rng,
+                                      Arena& arena, PathStats& stats) const;
 
     PathParams params_;
     bool spectralMIS_;
     int maxDepth_;
 };
 
-SampledSpectrum VolPathIntegrator::Li(const Scene& scene, const Ray& cameraRay, SampledWavelengths& wl, Sampler& sampler,
-                                      Arena& arena, PathStats& stats) const {
+template <bool P>
+void VolPathIntegrator::walk(const Scene& scene, const Ray& cameraRay, PathState<P>& ps, SampledWavelengths& wl, Sampler& sampler,
+                             Arena& arena, PathStats& stats) const {
     const int n = wl.size();
-    PathState ps{SampledSpectrum(n, 0.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f), SampledSpectrum(n, 1.0f)};
     ps.medium = scene.description().camera.medium.get();
     const float uLane = sampler.get1D();
     const int h = wl.isRGB() ? std::min(int(uLane * n), n - 1) : 0;
@@ -222,10 +312,10 @@ SampledSpectrum VolPathIntegrator::Li(const Scene& scene, const Ray& cameraRay, 
         if (!scatterAtSurface(scene, *hit, ray, h, ps, wl, sampler, rng, arena, stats)) break;
         arena.reset();
     }
-    return ps.L;
 }
 
-bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState& ps, SampledWavelengths& wl,
+template <bool P>
+bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, int h, PathState<P>& ps, SampledWavelengths& wl,
                                     Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
     bool scattered = false;
     const std::optional<SampledSpectrum> tMaj = sampleCollisions(
@@ -265,7 +355,8 @@ bool VolPathIntegrator::trackMedium(const Scene& scene, Ray& ray, float tHit, in
     return false;
 }
 
-bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState& ps,
+template <bool P>
+bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& ray, int h, PathState<P>& ps,
                                         SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena, PathStats& stats) const {
     // This event is scattering number depth (counted before the check, Mitsuba 3 volpath.cpp
     // `depth += 1; active &= depth < max_depth`), so next-event estimation here is allowed whenever
@@ -273,16 +364,24 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
     if (++ps.depth >= maxDepth_) return ps.terminated = true, false;
     const PhaseFunction& phase = ps.medium->phase();
     const vec3 wo = -ray.d;
+    if constexpr (P) ps.beta.changeBasis(wo, stokesBasis(wo));  // the phase matrices' output basis
     if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
         const float uLight = sampler.get1D();
         const vec2 uL = sampler.get2D();
         if (ps.medium->sampleEmitters())
-            if (const auto s = sampleLightInMedium(scene, p, phase, wo, uLight, uL, wl))
-                ps.L += lightContribution(scene, p, nullptr, *s, h, ps, wl, rng, arena, stats);
+            if (const auto s = sampleLightInMedium(scene, p, phase, wo, uLight, uL, wl)) {
+                if constexpr (P) {
+                    const VertexMueller v = phaseMueller(phase, p, wo, s->ls.wi, wl.size());
+                    addLight(scene, p, nullptr, *s, &v, h, ps, wl, rng, arena, stats);
+                } else {
+                    addLight(scene, p, nullptr, *s, nullptr, h, ps, wl, rng, arena, stats);
+                }
+            }
     }
     const std::optional<PhaseSample> s = phase.sample(p, wo, sampler.get2D());
     if (!s || !(s->pdf > 0)) return ps.terminated = true, false;
-    ps.beta *= s->weight();
+    if constexpr (P) ps.beta.apply(phase.evalMueller(p, wo, s->wi, wl.size()) * (1.0f / s->pdf), stokesBasis(-s->wi));
+    else ps.beta *= s->weight();
     ps.rL = ps.rU / s->pdf;
     ps.specularBounce = false;
     ps.prevP = p;
@@ -291,47 +390,67 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
     return true;
 }
 
-void VolPathIntegrator::addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState& ps,
+template <bool P>
+void VolPathIntegrator::addEmission(const Scene& scene, const Ray& ray, const SurfaceInteraction* si, int h, PathState<P>& ps,
                                     const SampledWavelengths& wl) const {
     if (params_.hideEmitters && ps.depth == 0) return;
     forEachEmission(scene, si, ray.d, wl, [&](const Light& light, const SampledSpectrum& Le) {
         if (Le.isBlack()) return;
+        float d = 0;
         if (ps.depth == 0 || ps.specularBounce) {
-            ps.L += ps.beta * Le / reduce(ps.rU, h, wl);
-            return;
+            d = reduce(ps.rU, h, wl);
+        } else {
+            const SampledSpectrum rL = ps.rL * lightSamplingPdf(scene, light, ps.prevP, ray.d, si);
+            d = reduce(ps.rU + rL, h, wl);
         }
-        const SampledSpectrum rL = ps.rL * lightSamplingPdf(scene, light, ps.prevP, ray.d, si);
-        ps.L += ps.beta * Le / reduce(ps.rU + rL, h, wl);
+        if constexpr (P) ps.beta.addUnpolarized(Le, 1.0f / d, ps.L);  // emitters are unpolarized
+        else ps.L += ps.beta * Le / d;
     });
 }
 
-bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState& ps,
+template <bool P>
+bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceInteraction& si, Ray& ray, int h, PathState<P>& ps,
                                          SampledWavelengths& wl, Sampler& sampler, Pcg32& rng, Arena& arena,
                                          PathStats& stats) const {
     const ShadingPoint sp = shadingPointAt(si);
     const Frame& frame = sp.shading;
     const BSDF* bsdf = si.material->getBSDF(sp, wl, arena);
-    if (!bsdf || bsdf->flags() == kPassThroughLobe) {  // a boundary only: not a bounce (Mitsuba 3 volpath)
+    const vec3 wo = frame.toLocal(si.wo);
+    if (passesUnchanged<P>(bsdf, wo)) {  // a boundary only: not a bounce (Mitsuba 3 volpath)
         ps.medium = mediumAfter(scene, si, ray.d, ps.medium);
         ray = si.spawnRay(ray.d);
         return true;
     }
-    const vec3 wo = frame.toLocal(si.wo);
+    if constexpr (P) ps.beta.changeBasis(frame.toWorld(wo), frame.toWorld(stokesBasis(wo)));  // the BSDF's output basis
     if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
         const float uLight = sampler.get1D();
         const vec2 uL = sampler.get2D();
         if (bsdf->hasNonSpecular() && ps.depth + 1 < maxDepth_)
-            if (const auto s = sampleLightAtSurface(scene, si.p, si.ng, frame, *bsdf, wo, uLight, uL, wl, params_.strictNormals))
-                ps.L += lightContribution(scene, si.p, &si, *s, h, ps, wl, rng, arena, stats);
+            if (const auto s = sampleLightAtSurface(scene, si.p, si.ng, frame, *bsdf, wo, uLight, uL, wl, params_.strictNormals)) {
+                if constexpr (P) {
+                    const VertexMueller v = surfaceMueller(*bsdf, frame, wo, frame.toLocal(s->ls.wi));
+                    addLight(scene, si.p, &si, *s, &v, h, ps, wl, rng, arena, stats);
+                } else {
+                    addLight(scene, si.p, &si, *s, nullptr, h, ps, wl, rng, arena, stats);
+                }
+            }
     }
     const float uc = sampler.get1D();
     const vec2 u = sampler.get2D();
-    const auto bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
+    std::optional<BSDFSample> bs;
+    std::optional<PolarizedBSDFSample> pbs;
+    if constexpr (P) {
+        pbs = bsdf->sampleMueller(wo, uc, u, TransportMode::Radiance);
+        if (pbs) bs = pbs->s;
+    } else {
+        bs = bsdf->sample(wo, uc, u, TransportMode::Radiance);
+    }
     if (!bs || bs->pdf <= 0 || bs->f.isBlack()) return false;
     const bool passThrough = bs->isNull();
     const vec3 wiWorld = passThrough ? ray.d : glm::normalize(frame.toWorld(bs->wi));
     if (params_.strictNormals && !passThrough && !sidesAgree(wiWorld, si.ng, bs->wi.z)) return false;
-    ps.beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+    if constexpr (P) ps.beta.apply(pbs->M * (std::abs(bs->wi.z) / bs->pdf), frame.toWorld(stokesBasis(-bs->wi)));
+    else ps.beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
     if (!passThrough) {  // a real bounce (the null lobe of a mask is a boundary crossing)
         ++ps.depth;
         ps.specularBounce = bs->isSpecular();
@@ -346,9 +465,10 @@ bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceIntera
     return passThrough || survivesRoulette(ps, h, wl, uRR);
 }
 
-SampledSpectrum VolPathIntegrator::lightContribution(const Scene& scene, const vec3& p, const SurfaceInteraction* si,
-                                                     const VertexLightSample& s, int h, const PathState& ps,
-                                                     const SampledWavelengths& wl, Pcg32& rng, Arena& arena, PathStats& stats) const {
+template <bool P>
+void VolPathIntegrator::addLight(const Scene& scene, const vec3& p, const SurfaceInteraction* si, const VertexLightSample& s,
+                                 const VertexMueller* v, int h, PathState<P>& ps, const SampledWavelengths& wl, Pcg32& rng,
+                                 Arena& arena, PathStats& stats) const {
     const LightSample& ls = s.ls;
     // The shadow ray: from the surface (offset to the light's side; leaving a medium transition
     // towards the light may enter the other side's medium) or the medium point, to the light point
@@ -361,30 +481,40 @@ SampledSpectrum VolPathIntegrator::lightContribution(const Scene& scene, const v
         const vec3 target = glm::dot(ls.nLight, ls.nLight) > 0 ? offsetRayOrigin(ls.pLight, ls.nLight, -ls.wi) : ls.pLight;
         const vec3 d = target - o;
         dist = glm::length(d) * (1.0f - 1e-4f);
-        if (!(dist > 0)) return SampledSpectrum(wl.size(), 0.0f);
+        if (!(dist > 0)) return;
         dir = d / glm::length(d);
     }
     SampledSpectrum rL = ps.rU * s.lightPdf, rU = ps.rU * s.scatterPdf;
-    const SampledSpectrum T = shadowTransmittance(scene, o, dir, dist, start, h, rU, rL, wl, rng, arena, stats);
-    if (T.isBlack()) return T;
-    const SampledSpectrum contrib = ps.beta * s.f * T * ls.L;
-    if (s.light->isDelta()) return contrib / reduce(rL, h, wl);
-    return contrib / reduce(rL + rU, h, wl);
+    using Transmittance = std::conditional_t<P, ShadowMueller, SampledSpectrum>;
+    const Transmittance T = shadowTransmittance<Transmittance>(scene, o, dir, dist, start, h, rU, rL, wl, rng, arena, stats);
+    if (T.isBlack()) return;
+    const float d = s.light->isDelta() ? reduce(rL, h, wl) : reduce(rL + rU, h, wl);
+    if constexpr (P) {
+        addLightThrough(ps.beta, *v, T, ls.L, 1.0f / d, ps.L);
+    } else {
+        (void)v;
+        const SampledSpectrum contrib = ps.beta * s.f * T * ls.L;
+        ps.L += contrib / d;
+    }
 }
 
-SampledSpectrum VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist,
-                                                       const Medium* medium, int h, SampledSpectrum& rU, SampledSpectrum& rL,
-                                                       const SampledWavelengths& wl, Pcg32& rng, Arena& arena,
-                                                       PathStats& stats) const {
-    SampledSpectrum T(wl.size(), 1.0f);
+template <typename Transmittance>
+Transmittance VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 o, const vec3& dir, float dist, const Medium* medium,
+                                                     int h, SampledSpectrum& rU, SampledSpectrum& rL, const SampledWavelengths& wl,
+                                                     Pcg32& rng, Arena& arena, PathStats& stats) const {
+    constexpr bool P = !std::is_same_v<Transmittance, SampledSpectrum>;
+    auto blocked = [&] {
+        if constexpr (P) return ShadowMueller::zero(wl.size(), dir);
+        else return SampledSpectrum(wl.size(), 0.0f);
+    };
+    Transmittance T = [&] {
+        if constexpr (P) return ShadowMueller(wl.size(), dir);
+        else return SampledSpectrum(wl.size(), 1.0f);
+    }();
     for (int crossings = 0; crossings < 1000; ++crossings) {
         ++stats.rays;
         const std::optional<SurfaceInteraction> hit = scene.intersect(Ray(o, dir, dist));
-        if (hit) {
-            const std::optional<SampledSpectrum> w = crossingWeight(*hit, dir, wl, arena);
-            if (!w || w->isBlack()) return SampledSpectrum(wl.size(), 0.0f);
-            T *= *w;
-        }
+        if (hit && !crossSurface(*hit, dir, wl, arena, T)) return blocked();
         const float tEnd = hit ? hit->t : dist;
         if (medium) {
             // Ratio tracking (Novák et al. 2014), collisions ∝ σ_maj in lane h.
@@ -405,9 +535,9 @@ SampledSpectrum VolPathIntegrator::shadowTransmittance(const Scene& scene, vec3 
                     }
                     return !T.isBlack();
                 });
-            if (!tMaj) return SampledSpectrum(wl.size(), 0.0f);
+            if (!tMaj) return blocked();
             const float pdf = (*tMaj)[h];
-            if (!(pdf > 0)) return SampledSpectrum(wl.size(), 0.0f);
+            if (!(pdf > 0)) return blocked();
             T *= *tMaj / pdf;
             rL *= *tMaj / pdf;
             rU *= *tMaj / pdf;

@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/registry.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/nested_materials.h"
 #include "materials/textures/texture_params.h"
@@ -46,12 +47,10 @@ public:
         return p;
     }
     std::optional<BSDFSample> sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
-        // Mitsuba 3: the first BSDF when uc > w (probability 1 − w), uc rescaled to [0, 1); at
-        // w = 0 or 1 always the one with weight 1.
-        const int i = w_[1] == 0.0f || (uc > w_[1] && w_[0] > 0.0f) ? 0 : 1;
-        if (!bsdf_[i] || !(w_[i] > 0)) return std::nullopt;
-        const float ui = i == 0 ? (uc - w_[1]) / w_[0] : uc / w_[1];
-        auto s = bsdf_[i]->sample(wo, std::min(ui, 0x1.fffffep-1f), u, mode);
+        float ui;
+        const int i = lobe(uc, &ui);
+        if (i < 0) return std::nullopt;
+        auto s = bsdf_[i]->sample(wo, ui, u, mode);
         if (!s || mitsuba3_) return s;
         if (s->isSpecular()) {  // a delta lobe: the other BSDF has no mass on this direction
             s->f *= w_[i];
@@ -60,9 +59,38 @@ public:
         }
         return sampleFromEval(wo, s->wi, s->flags, mode);
     }
+    /// Polarized: (1 − w) M₀ + w M₁, sampled as sample() does.
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        MuellerSpectrum M = MuellerSpectrum::depolarizer(SampledSpectrum(n_));
+        for (int i = 0; i < 2; ++i)
+            if (bsdf_[i] && w_[i] > 0) M += bsdf_[i]->evalMueller(wo, wi, mode) * w_[i];
+        return M;
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        float ui;
+        const int i = lobe(uc, &ui);
+        if (i < 0) return std::nullopt;
+        auto s = bsdf_[i]->sampleMueller(wo, ui, u, mode);
+        if (!s || mitsuba3_) return s;
+        if (s->s.isSpecular()) {
+            s->s.f *= w_[i];
+            s->s.pdf *= w_[i];
+            s->M *= w_[i];
+            return s;
+        }
+        return withEvalMueller(*this, sampleFromEval(wo, s->s.wi, s->s.flags, mode), wo, mode);
+    }
     uint32_t flags() const override { return (bsdf_[0] ? bsdf_[0]->flags() : 0u) | (bsdf_[1] ? bsdf_[1]->flags() : 0u); }
 
 private:
+    /// Mitsuba 3: the first BSDF when uc > w (probability 1 − w), uc rescaled to [0, 1) in *ui; at
+    /// w = 0 or 1 always the one with weight 1. −1 when that BSDF is absent.
+    int lobe(float uc, float* ui) const {
+        const int i = w_[1] == 0.0f || (uc > w_[1] && w_[0] > 0.0f) ? 0 : 1;
+        if (!bsdf_[i] || !(w_[i] > 0)) return -1;
+        *ui = std::min(i == 0 ? (uc - w_[1]) / w_[0] : uc / w_[1], 0x1.fffffep-1f);
+        return i;
+    }
     const BSDF* bsdf_[2];
     float w_[2];  // selection probabilities and blend factors: 1 − w, w
     bool mitsuba3_;

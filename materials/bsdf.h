@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "core/frame.h"
+#include "spectral/mueller.h"
 #include "spectral/sampled_spectrum.h"
 
 namespace iris {
@@ -48,6 +49,13 @@ struct BSDFSample {
     SampledSpectrum weight() const { return pdf > 0 ? f * (std::abs(wi.z) / pdf) : SampledSpectrum(f.size()); }
 };
 
+/// A sample with the Mueller form M of its f (polarized mode; M(0, 0) is f for an unpolarized
+/// lobe); the bases of M are those of BSDF::evalMueller.
+struct PolarizedBSDFSample {
+    BSDFSample s;
+    MuellerSpectrum M;
+};
+
 class BSDF {
 public:
 
@@ -69,6 +77,25 @@ public:
     /// 3 BSDF::eval_null_transmission, also Mitsuba 0.6's eval of the ENull component): the
     /// coefficient of the pass-through lobe; nullopt for a BSDF without one (it blocks shadow rays).
     virtual std::optional<SampledSpectrum> nullTransmission(const vec3& wo) const { return (void)wo, std::nullopt; }
+
+    // Polarized mode (docs/polarization.md). f as a Mueller matrix in the local frame, from the
+    // Stokes basis of the light arriving, stokesBasis(−wi), to that of the light leaving,
+    // stokesBasis(wo) (spectral/stokes_basis.h; Mitsuba 3's pBSDF convention). The defaults are a
+    // depolarizer of eval()/sample() and an absorber of nullTransmission(); a polarizing BSDF or a
+    // wrapper overrides them.
+    virtual MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const {
+        return MuellerSpectrum::depolarizer(eval(wo, wi, mode));
+    }
+    virtual std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const {
+        std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        return PolarizedBSDFSample{*s, MuellerSpectrum::depolarizer(s->f)};
+    }
+    virtual std::optional<MuellerSpectrum> nullTransmissionMueller(const vec3& wo) const {
+        std::optional<SampledSpectrum> t = nullTransmission(wo);
+        if (!t) return std::nullopt;
+        return MuellerSpectrum::absorber(*t);
+    }
 
 protected:
     // BSDFs live in the Arena and are never destroyed: the destructor is trivial and non-virtual.

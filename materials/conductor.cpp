@@ -8,6 +8,7 @@
 #include "core/registry.h"
 #include "spectral/conductor_presets.h"
 #include "materials/fresnel.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 
@@ -32,6 +33,15 @@ public:
         return s;
     }
     uint32_t flags() const override { return kBSDFReflection | kBSDFSpecular; }
+    /// Mitsuba 3 conductor.cpp, polarized: the complex Fresnel reflection matrix (its "none", the
+    /// perfect mirror, is the index 0 + 1i: |r_s| = |r_p| = 1 with a phase difference).
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        const int n = scale_.size();
+        const SampledSpectrum eta = mirror_ ? SampledSpectrum(n) : eta_, k = mirror_ ? SampledSpectrum(n, 1.0f) : k_;
+        return withMueller(s, fresnelReflectionMueller(vec3(0, 0, 1), s->wi, wo, eta, &k), scale_ / s->wi.z);
+    }
 
 private:
     SampledSpectrum eta_, k_, scale_;

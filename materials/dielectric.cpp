@@ -8,6 +8,7 @@
 // varies with λ), the green channel's in RGB mode; Fresnel factors use each channel's own η.
 #include "core/registry.h"
 #include "materials/fresnel.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "spectral/ior_params.h"
@@ -49,6 +50,17 @@ public:
         return s;
     }
     uint32_t flags() const override { return kBSDFReflection | kBSDFTransmission | kBSDFSpecular; }
+    /// Mitsuba 3 dielectric.cpp, polarized: the Fresnel reflection or refraction matrix of the
+    /// sampled lobe, at the cosine of the light's side; f's other factors unchanged.
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        const vec3 n(0, 0, 1);
+        if (!s->isTransmission()) return withMueller(s, fresnelReflectionMueller(n, s->wi, wo, eta_), r_ / std::abs(s->wi.z));
+        const float etaTI = wo.z > 0 ? 1.0f / etaDir_ : etaDir_;
+        const float radiance = mode == TransportMode::Radiance ? sqr(etaTI) : 1.0f;
+        return withMueller(s, fresnelTransmissionMueller(n, s->wi, wo, eta_), t_ * (radiance / std::abs(s->wi.z)));
+    }
 
 private:
     SampledSpectrum eta_;

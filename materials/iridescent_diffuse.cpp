@@ -22,6 +22,8 @@
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/thin_film_coating.h"
+#include "materials/fresnel_mueller.h"
+#include "materials/thin_film_mueller.h"
 #include "materials/textures/texture_params.h"
 
 #include <limits>
@@ -93,6 +95,27 @@ public:
 
     uint32_t flags() const override {
         return kBSDFReflection | kBSDFDiffuse | (smooth_ ? kBSDFSpecular : kBSDFGlossy);
+    }
+
+    /// Polarized: the diffuse lobe enters and leaves through the stack around a depolarizing base
+    /// (materials/thin_film_mueller.h coatingDiffuseMueller), the specular lobe is the stack's
+    /// reflection matrix.
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode) const override {
+        const int n = coating_.size();
+        if (wo.z <= 0 || wi.z <= 0) return MuellerSpectrum::depolarizer(SampledSpectrum(n));
+        MuellerSpectrum M = coatingDiffuseMueller(coating_, base_, wi, wo);
+        if (smooth_) return M;
+        const vec3 h = glm::normalize(wo + wi);
+        const float woh = glm::dot(wo, h);
+        const float DG = woh > 0 ? dist_.D(h) * dist_.G(wi, wo, h) : 0.0f;
+        if (DG > 0) M += coatingReflectionMueller(coating_, woh, false, h, wi, wo) * (DG / (4.0f * wo.z * wi.z));
+        return M;
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s || !s->isSpecular()) return withEvalMueller(*this, s, wo, mode);
+        return withMueller(s, coatingReflectionMueller(coating_, wo.z, false, vec3(0, 0, 1), s->wi, wo),
+                           SampledSpectrum(coating_.size(), 1.0f / wo.z));
     }
 
 private:

@@ -90,6 +90,32 @@ public:
         const SampledSpectrum nested = (nested_ ? nested_->nullTransmission(wo) : std::nullopt).value_or(SampledSpectrum(opacity_.size()));
         return one - opacity_ * (one - nested);  // Mitsuba 3 mask.cpp eval_null_transmission
     }
+    // Polarized: the nested BSDF's matrices times opacity; the pass-through is an absorber (an
+    // unchanged Stokes vector, whose basis stokesBasis(wo) is the same on both sides).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        if (!nested_) return MuellerSpectrum::depolarizer(SampledSpectrum(opacity_.size()));
+        return nested_->evalMueller(wo, wi, mode) * opacity_;
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (uc < prob_) {
+            if (!nested_) return std::nullopt;
+            auto s = nested_->sampleMueller(wo, std::min(uc / prob_, 0x1.fffffep-1f), u, mode);
+            if (s && !mitsuba3_) {
+                s->s.f *= opacity_;
+                s->s.pdf *= prob_;
+                s->M *= opacity_;
+            }
+            return s;
+        }
+        const std::optional<BSDFSample> s = passThrough(wo, 1.0f - opacity_, 1.0f - prob_);
+        if (!s) return std::nullopt;
+        return PolarizedBSDFSample{*s, MuellerSpectrum::absorber(s->f)};
+    }
+    std::optional<MuellerSpectrum> nullTransmissionMueller(const vec3& wo) const override {
+        MuellerSpectrum M = MuellerSpectrum::absorber(1.0f - opacity_);  // 1 − opacity (1 − nested)
+        if (const auto nested = nested_ ? nested_->nullTransmissionMueller(wo) : std::nullopt) M += *nested * opacity_;
+        return M;
+    }
 
 private:
     const BSDF* nested_;
@@ -108,6 +134,11 @@ public:
     }
     uint32_t flags() const override { return kNullLobe; }
     std::optional<SampledSpectrum> nullTransmission(const vec3&) const override { return SampledSpectrum(n_, 1.0f); }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        return PolarizedBSDFSample{*s, MuellerSpectrum::absorber(s->f)};  // the Stokes vector passes unchanged
+    }
 
 private:
     int n_;

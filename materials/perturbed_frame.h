@@ -14,6 +14,7 @@
 #include "core/frame.h"
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/mueller_frames.h"
 #include "materials/nested_materials.h"
 
 namespace iris {
@@ -125,6 +126,28 @@ public:
         return s;
     }
     uint32_t flags() const override { return nested_[0]->flags() | nested_[1]->flags(); }
+    /// Polarized: the nested matrix, computed in the perturbed frame, re-expressed in this frame's
+    /// bases (materials/mueller_frames.h; Mitsuba 3's PerturbedBSDF hands it on unrotated,
+    /// docs/polarization.md).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        const int k = choose(wo);
+        const vec3 wiP = frame_[k].toLocal(wi);
+        if (!(wi.z * wiP.z > 0)) return MuellerSpectrum::depolarizer(SampledSpectrum(nWl_));
+        const MuellerSpectrum M = nested_[k]->evalMueller(frame_[k].toLocal(wo), wiP, mode) * factor(k, wi, wiP);
+        return fromNestedFrame(M, frame_[k], false, wi, wo);
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const int k = choose(wo);
+        auto s = nested_[k]->sampleMueller(frame_[k].toLocal(wo), uc, u, mode);
+        if (!s) return std::nullopt;
+        const vec3 wi = frame_[k].toWorld(s->s.wi);
+        if (!(wi.z * s->s.wi.z > 0)) return std::nullopt;
+        const float f = factor(k, wi, s->s.wi);
+        s->s.f *= f;
+        s->s.wi = wi;
+        s->M = fromNestedFrame(s->M * f, frame_[k], false, wi, wo);
+        return s;
+    }
 
 private:
     int choose(const vec3& wo) const {

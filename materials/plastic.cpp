@@ -7,6 +7,7 @@
 // Parameters: int_ior (1.49), ext_ior (1.000277) (floats or preset names), diffuse_reflectance (0.5),
 // specular_reflectance (1.0), nonlinear (false).
 #include "core/registry.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
@@ -62,6 +63,15 @@ public:
     }
 
     uint32_t flags() const override { return kBSDFReflection | kBSDFSpecular | kBSDFDiffuse; }
+    /// Polarized: the specular lobe is the coat's Fresnel reflection matrix, the diffuse lobe a
+    /// depolarizer (Mitsuba 3's plastic depolarizes both; its pplastic polarizes the specular lobe
+    /// as here; docs/polarization.md).
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s || !s->isSpecular()) return withEvalMueller(*this, s, wo, mode);
+        const SampledSpectrum eta(ks_.size(), eta_);
+        return withMueller(s, fresnelReflectionMueller(vec3(0, 0, 1), s->wi, wo, eta), ks_ / wo.z);
+    }
 
 private:
     float eta_;

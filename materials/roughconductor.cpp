@@ -7,6 +7,7 @@
 #include "core/registry.h"
 #include "spectral/conductor_presets.h"
 #include "materials/fresnel.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/textures/texture_params.h"
@@ -21,16 +22,22 @@ public:
         : d_(d), eta_(eta), k_(k), scale_(scale), mirror_(mirror) {}
 
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode) const override {
-        if (wo.z <= 0 || wi.z <= 0) return SampledSpectrum(scale_.size());
-        vec3 m = wo + wi;
-        const float len = glm::length(m);
-        if (len == 0) return SampledSpectrum(scale_.size());
-        m /= len;
-        const float D = d_.D(m);
-        if (D == 0) return SampledSpectrum(scale_.size());
-        const float G = d_.G(wi, wo, m);
-        // Thesis 000 eq. 2.6: f = F G D / (4 |wi·n| |wo·n|).
-        return fresnel(glm::dot(wi, m)) * scale_ * (D * G / (4.0f * wi.z * wo.z));
+        vec3 m;
+        const float t = microfacetTerm(wo, wi, &m);
+        if (t == 0) return SampledSpectrum(scale_.size());
+        return fresnel(glm::dot(wi, m)) * scale_ * t;
+    }
+    /// Mitsuba 3 roughconductor.cpp, polarized: the Fresnel matrix of the microfacet m.
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode) const override {
+        vec3 m;
+        const float t = microfacetTerm(wo, wi, &m);
+        if (t == 0) return MuellerSpectrum::depolarizer(SampledSpectrum(scale_.size()));
+        const int n = scale_.size();
+        const SampledSpectrum eta = mirror_ ? SampledSpectrum(n) : eta_, k = mirror_ ? SampledSpectrum(n, 1.0f) : k_;
+        return fresnelReflectionMueller(m, wi, wo, eta, &k) * (scale_ * t);
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        return withEvalMueller(*this, sample(wo, uc, u, mode), wo, mode);
     }
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
         if (wo.z <= 0 || wi.z <= 0) return 0.0f;
@@ -57,6 +64,19 @@ public:
     uint32_t flags() const override { return kBSDFReflection | kBSDFGlossy; }
 
 private:
+    /// D G / (4 cos θi cos θo) at the half vector *m of (wo, wi) (thesis 000 eq. 2.6: f = F G D /
+    /// (4 |wi·n| |wo·n|)), 0 below the surface or where D vanishes.
+    float microfacetTerm(const vec3& wo, const vec3& wi, vec3* m) const {
+        if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+        *m = wo + wi;
+        const float len = glm::length(*m);
+        if (len == 0) return 0.0f;
+        *m /= len;
+        const float D = d_.D(*m);
+        if (D == 0) return 0.0f;
+        const float G = d_.G(wi, wo, *m);
+        return D * G / (4.0f * wi.z * wo.z);
+    }
     SampledSpectrum fresnel(float cosI) const {
         return mirror_ ? SampledSpectrum(scale_.size(), 1.0f) : fresnelConductor(cosI, eta_, k_);
     }

@@ -16,6 +16,7 @@
 // Jacobians; the Fresnel factor uses each channel's own η.
 #include "core/registry.h"
 #include "materials/fresnel.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/textures/texture_params.h"
@@ -33,18 +34,27 @@ public:
     SampledSpectrum eval(const vec3& wo, const vec3& wi, TransportMode mode) const override {
         const int n = r_.size();
         Geometry g;
-        if (!geometry(wo, wi, &g)) return SampledSpectrum(n);
-        const float D = d_.D(g.m);
-        if (D == 0) return SampledSpectrum(n);
-        const float G = d_.G(wi, wo, g.m);
+        const float v = lobeTerm(wo, wi, mode, &g);
+        if (v == 0) return SampledSpectrum(n);
         const SampledSpectrum F = fresnelDielectric(g.dotO, eta_);
-        if (g.reflect) return F * r_ * (D * G / (4.0f * std::abs(wi.z * wo.z)));
-        // Walter eq. 21 with η_o (viewer side) = 1 and η_i = etaW relative to it; its adjoint
-        // f(wi, wo) has η_i² instead of η_o² and each channel's Fresnel factor seen from wi.
-        float v = D * G * std::abs(g.dotO * g.dotI) / (std::abs(wi.z * wo.z) * sqr(g.dotO + g.etaW * g.dotI));
+        if (g.reflect) return F * r_ * v;
+        // Walter eq. 21 with η_o (viewer side) = 1 and η_i = etaW relative to it (lobeTerm); its
+        // adjoint f(wi, wo) has η_i² instead of η_o² and each channel's Fresnel factor seen from wi.
         if (mode == TransportMode::Radiance) return (1.0f - F) * t_ * v;
-        v *= sqr(g.etaW);
         return (1.0f - fresnelDielectricAdjoint(g.dotO, g.dotI, eta_, etaDir_)) * t_ * v;
+    }
+    /// Polarized: the microfacet's Fresnel reflection or refraction matrix (the pattern of Mitsuba 3
+    /// roughconductor.cpp and dielectric.cpp; Mitsuba 3's own roughdielectric depolarizes,
+    /// docs/polarization.md).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        Geometry g;
+        const float v = lobeTerm(wo, wi, mode, &g);
+        if (v == 0) return MuellerSpectrum::depolarizer(SampledSpectrum(r_.size()));
+        if (g.reflect) return fresnelReflectionMueller(g.m, wi, wo, eta_) * (r_ * v);
+        return fresnelTransmissionMueller(g.m, wi, wo, eta_) * (t_ * v);
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        return withEvalMueller(*this, sample(wo, uc, u, mode), wo, mode);
     }
 
     float pdf(const vec3& wo, const vec3& wi, TransportMode) const override {
@@ -87,6 +97,19 @@ private:
         float dotO, dotI, etaW;
         bool reflect;
     };
+    /// f without its Fresnel factor and weights: D G / (4 |cos θi cos θo|) for reflection, Walter
+    /// eq. 21's rest with η_o (viewer side) = 1 and η_i = etaW relative to it for refraction; 0
+    /// where the pair has no valid half vector or D vanishes.
+    float lobeTerm(const vec3& wo, const vec3& wi, TransportMode mode, Geometry* g) const {
+        if (!geometry(wo, wi, g)) return 0.0f;
+        const float D = d_.D(g->m);
+        if (D == 0) return 0.0f;
+        const float G = d_.G(wi, wo, g->m);
+        if (g->reflect) return D * G / (4.0f * std::abs(wi.z * wo.z));
+        float v = D * G * std::abs(g->dotO * g->dotI) / (std::abs(wi.z * wo.z) * sqr(g->dotO + g->etaW * g->dotI));
+        if (mode == TransportMode::Importance) v *= sqr(g->etaW);
+        return v;
+    }
     /// The (generalised) half vector of (wo, wi), oriented to +z, and the side checks.
     bool geometry(const vec3& wo, const vec3& wi, Geometry* g) const {
         if (wo.z == 0 || wi.z == 0) return false;

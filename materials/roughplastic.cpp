@@ -20,6 +20,7 @@
 //   loss, so the base looks darker (1/(1 − Fdr) 2 % lower at α = 0.01, 64 % at α = 1; GGX, η 1.5).
 // Everything else (specular lobe, T12 T21 / η², sampling) is the same model in both versions.
 #include "core/registry.h"
+#include "materials/fresnel_mueller.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "materials/thesis_rough_coat.h"
@@ -62,6 +63,22 @@ public:
         const float d = roughCoatDiffuse(transmittance(wi.z), transmittance(wo.z), eta_);  // eq. 2.55
         for (int c = 0; c < f.size(); ++c) f[c] = ks_[c] * s + rhoEff_[c] * d;   // eq. 2.56
         return f;
+    }
+
+    /// Polarized: the specular lobe is the microfacet's Fresnel reflection matrix (the pattern of
+    /// Mitsuba 3 roughconductor.cpp and pplastic.cpp), the diffuse lobe a depolarizer (Mitsuba 3's
+    /// roughplastic depolarizes both; docs/polarization.md).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        const int n = ks_.size();
+        if (wo.z <= 0 || wi.z <= 0) return MuellerSpectrum::depolarizer(SampledSpectrum(n));
+        const float d = roughCoatDiffuse(transmittance(wi.z), transmittance(wo.z), eta_);
+        MuellerSpectrum M = MuellerSpectrum::depolarizer(rhoEff_ * d);
+        const RoughCoatGeometry g = roughCoatGeometry(dist_, wo, wi);
+        if (g.dg > 0) M += fresnelReflectionMueller(g.h, wi, wo, SampledSpectrum(n, eta_)) * (ks_ * g.dg);
+        return M;
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        return withEvalMueller(*this, sample(wo, uc, u, mode), wo, mode);
     }
 
     float specularProbability(const vec3& wo) const {

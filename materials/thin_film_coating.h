@@ -12,6 +12,7 @@
 #include "core/properties.h"
 #include "materials/textures/texture.h"
 #include "spectral/thin_film_airy_batch.h"
+#include "spectral/thin_film_polarization.h"
 #include "spectral/thin_film_stack.h"
 #include "spectral/ior.h"
 #include "spectral/sampled_spectrum.h"
@@ -106,6 +107,11 @@ public:
     double internalHemisphericalReflectance(int k) const;
     /// Always the quadrature (for tests of the cache).
     double internalHemisphericalReflectanceDirect(int k) const;
+
+    /// Polarized mode (docs/polarization.md): the s and p powers and the cross terms of the stack's
+    /// Mueller matrices at entry k, for light at cosθ from the exterior or (below) the substrate;
+    /// the powers equal stackRT / stackRTFromBelow's (materials/thin_film_coating_polarized.cpp).
+    FilmPolarization polarization(int k, double cosTheta, bool below = false) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }

@@ -14,6 +14,8 @@
 // are plain occlusion tests).
 #include "core/registry.h"
 #include "materials/fresnel.h"
+#include "materials/fresnel_polarized.h"
+#include "materials/mueller_frames.h"
 #include "materials/material.h"
 #include "materials/textures/texture_params.h"
 #include "spectral/ior_params.h"
@@ -51,7 +53,29 @@ public:
         return (1.0f - slabReflectance(wo)) * t_;  // Mitsuba 3 eval_null_transmission: 1 − R'
     }
 
+    /// Polarized: the slab's matrices per polarization (materials/fresnel_polarized.h slabTerms),
+    /// for the lobe sample() chose with the unpolarized R'. Their response to unpolarized light,
+    /// (R'_s + R'_p)/2, is not the unpolarized model's R' of the mean R: the slab sums s and p
+    /// separately (docs/polarization.md).
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        const bool reflected = !s->isNull();
+        MuellerSpectrum M = slabMueller(wo, s->wi, reflected) * ((reflected ? r_ : t_) / std::abs(wo.z));
+        return PolarizedBSDFSample{*s, M};
+    }
+    std::optional<MuellerSpectrum> nullTransmissionMueller(const vec3& wo) const override {
+        return slabMueller(wo, -wo, false) * t_;
+    }
+
 private:
+    MuellerSpectrum slabMueller(const vec3& wo, const vec3& wi, bool reflected) const {
+        const MuellerSpectrum M = interfaceMuellerPerLane(eta_.size(), [&](int i) {
+            const SlabMuellerTerms t = slabTerms(wo.z, eta_[i]);
+            return reflected ? t.reflection : t.transmission;
+        });
+        return fromSAxisBases(M, vec3(0, 0, 1), wi, wo);
+    }
     /// R' = R + T²R/(1 − R²), the slab's reflectance with every internal bounce (R at |cos θo|).
     SampledSpectrum slabReflectance(const vec3& wo) const {
         SampledSpectrum R = fresnelDielectric(std::abs(wo.z), eta_);

@@ -18,6 +18,9 @@
 #include "materials/material.h"
 #include "materials/microfacet.h"
 #include "materials/thin_film_coating.h"
+#include "materials/fresnel_mueller.h"
+#include "materials/mueller_frames.h"
+#include "materials/thin_film_mueller.h"
 
 #include <limits>
 
@@ -71,6 +74,25 @@ public:
 
     uint32_t flags() const override { return kBSDFReflection | (smooth_ ? kBSDFSpecular : kBSDFGlossy); }
 
+    /// Polarized: the stack's reflection matrix at the microfacet angle (materials/thin_film_mueller.h).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode) const override {
+        const int n = coating_.size();
+        if (smooth_ || wo.z <= 0 || wi.z <= 0) return MuellerSpectrum::depolarizer(SampledSpectrum(n));
+        vec3 h = wo + wi;
+        if (glm::dot(h, h) == 0) return MuellerSpectrum::depolarizer(SampledSpectrum(n));
+        h = glm::normalize(h);
+        const float woh = glm::dot(wo, h);
+        const float DG = woh > 0 ? dist_.D(h) * dist_.G(wi, wo, h) : 0.0f;
+        if (!(DG > 0)) return MuellerSpectrum::depolarizer(SampledSpectrum(n));
+        return coatingReflectionMueller(coating_, woh, false, h, wi, wo) * (DG / (4.0f * wo.z * wi.z));
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s || !smooth_) return withEvalMueller(*this, s, wo, mode);
+        return withMueller(s, coatingReflectionMueller(coating_, wo.z, false, vec3(0, 0, 1), s->wi, wo),
+                           SampledSpectrum(coating_.size(), 1.0f / wo.z));
+    }
+
 private:
     ThinFilmCoating coating_;
     MicrofacetDistribution dist_;
@@ -119,6 +141,21 @@ public:
         s.eta = etaIT;
         s.flags = kBSDFTransmission | kBSDFSpecular;
         return s;
+    }
+
+    /// Polarized: the stack's reflection or transmission matrix for the light's own path, lit from
+    /// wi's side at wi's angle (T_s, T_p are reciprocal, the phases of t_s t_p* need the direction).
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        const std::optional<BSDFSample> s = sample(wo, uc, u, mode);
+        if (!s) return std::nullopt;
+        const vec3 n(0, 0, 1);
+        const float ci = std::abs(s->wi.z);
+        const bool fromBelow = s->wi.z < 0;
+        if (!s->isTransmission())
+            return withMueller(s, coatingReflectionMueller(coating_, ci, fromBelow, n, s->wi, wo), SampledSpectrum(coating_.size(), 1.0f / ci));
+        const float radiance = mode == TransportMode::Radiance ? 1.0f / (s->eta * s->eta) : 1.0f;
+        return withMueller(s, coatingTransmissionMueller(coating_, ci, fromBelow, n, s->wi, wo),
+                           SampledSpectrum(coating_.size(), radiance / ci));
     }
 
 private:
@@ -196,6 +233,30 @@ public:
         return s;
     }
 
+    /// Polarized: evalAt with the stack's matrices, lit from wi's side (reflection: wo's side;
+    /// refraction: the other one); from below, the mirrored frame's matrix is mapped back
+    /// (materials/mueller_frames.h: v → −v reverses the handedness).
+    MuellerSpectrum evalMueller(const vec3& woIn, const vec3& wiIn, TransportMode mode) const override {
+        const MuellerSpectrum zero = MuellerSpectrum::depolarizer(SampledSpectrum(coating_.size()));
+        if (woIn.z == 0 || wiIn.z == 0) return zero;
+        const bool inside = woIn.z < 0;
+        const vec3 wo = inside ? -woIn : woIn, wi = inside ? -wiIn : wiIn;
+        const float etap = relativeEta(inside);
+        vec3 h;
+        float denom = 0;
+        if (!halfVector(wo, wi, etap, h, denom)) return zero;
+        const float scalar = lobeFactor(wo, wi, h, denom, etap, mode);
+        if (!(scalar > 0)) return zero;
+        const bool refracted = wi.z < 0;
+        MuellerSpectrum M = refracted ? coatingTransmissionMueller(coating_, std::abs(glm::dot(wi, h)), !inside, h, wi, wo)
+                                      : coatingReflectionMueller(coating_, glm::dot(wo, h), inside, h, wi, wo);
+        M *= scalar;
+        return inside ? fromNestedFrame(M, Frame(vec3(-1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1)), true, wiIn, woIn) : M;
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        return withEvalMueller(*this, sample(wo, uc, u, mode), wo, mode);
+    }
+
 private:
     /// f in the mirrored frame (wo.z > 0) for the microfacet normal h.
     SampledSpectrum evalAt(const vec3& wo, const vec3& wi, const vec3& h, float denom, float etap, bool inside,
@@ -203,13 +264,19 @@ private:
         const int n = coating_.size();
         SampledSpectrum R, T;
         stackAt(inside, glm::dot(wo, h), R, T);
+        const float v = lobeFactor(wo, wi, h, denom, etap, mode);
+        if (v == 0) return SampledSpectrum(n);
+        return (wi.z > 0 ? R : T) * v;
+    }
+    /// evalAt's factor of R (reflection) or T (refraction); 0 where D G vanishes.
+    float lobeFactor(const vec3& wo, const vec3& wi, const vec3& h, float denom, float etap, TransportMode mode) const {
         const float DG = dist_.D(h) * dist_.G(wi, wo, h);
-        if (!(DG > 0)) return SampledSpectrum(n);
-        if (wi.z > 0) return R * (DG / (4.0f * wo.z * wi.z));  // Walter eq. 20
+        if (!(DG > 0)) return 0.0f;
+        if (wi.z > 0) return DG / (4.0f * wo.z * wi.z);  // Walter eq. 20
         // Walter eq. 21 in pbrt-v4's relative-index form: T D G |wi·h wo·h| / (|cosθi cosθo| (wi·h + wo·h/η')²), /η'² for radiance.
         float ft = DG * std::abs(glm::dot(wi, h) * glm::dot(wo, h) / (wi.z * wo.z * denom * denom));
         if (mode == TransportMode::Radiance) ft /= etap * etap;
-        return T * ft;
+        return ft;
     }
 
     /// pdf in the mirrored frame for the microfacet normal h.

@@ -4,11 +4,14 @@
 // Parameters: one or two nested <bsdf> children (unnamed, or under any name; first = front).
 #include "core/registry.h"
 #include "materials/material.h"
+#include "materials/mueller_frames.h"
 
 namespace iris {
 namespace {
 
 inline vec3 flipZ(const vec3& w) { return vec3(w.x, w.y, -w.z); }
+/// The back BSDF's local frame in this one's coordinates: z → −z (an improper map).
+const Frame kFlippedFrame(vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, -1));
 
 class TwoSidedBSDF final : public BSDF {
 public:
@@ -34,6 +37,23 @@ public:
         return std::nullopt;
     }
     uint32_t flags() const override { return (front_ ? front_->flags() : 0u) | (back_ ? back_->flags() : 0u); }
+    /// Polarized: the back BSDF's matrix, computed in the mirrored frame, is mapped back with the
+    /// mirror's change of handedness (materials/mueller_frames.h fromNestedFrame; Mitsuba 3's
+    /// twosided hands it on without, docs/polarization.md).
+    MuellerSpectrum evalMueller(const vec3& wo, const vec3& wi, TransportMode mode) const override {
+        if (wo.z > 0 && front_) return front_->evalMueller(wo, wi, mode);
+        if (wo.z < 0 && back_) return fromNestedFrame(back_->evalMueller(flipZ(wo), flipZ(wi), mode), kFlippedFrame, true, wi, wo);
+        return MuellerSpectrum::depolarizer(SampledSpectrum(n_));
+    }
+    std::optional<PolarizedBSDFSample> sampleMueller(const vec3& wo, float uc, const vec2& u, TransportMode mode) const override {
+        if (wo.z > 0) return front_ ? front_->sampleMueller(wo, uc, u, mode) : std::nullopt;
+        if (!(wo.z < 0 && back_)) return std::nullopt;
+        auto s = back_->sampleMueller(flipZ(wo), uc, u, mode);
+        if (!s) return std::nullopt;
+        s->s.wi = flipZ(s->s.wi);
+        s->M = fromNestedFrame(s->M, kFlippedFrame, true, s->s.wi, wo);
+        return s;
+    }
 
 private:
     const BSDF* front_;

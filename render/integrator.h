@@ -10,6 +10,7 @@
 #include "core/arena.h"
 #include "core/registry.h"
 #include "core/rng.h"
+#include "render/polarized_estimate.h"
 #include "render/scene.h"
 
 namespace iris {
@@ -45,6 +46,12 @@ public:
         return (void)splats, Li(scene, ray, wl, sampler, arena, stats);
     }
     int maxDepth() const { return maxDepth_; }
+    /// Polarized mode (docs/polarization.md): integrators with a polarized form say so and add the
+    /// Stokes estimate along the ray to est.S (est.rows rows, reference basis est.basis). The
+    /// renderer refuses a polarized render with any other integrator before it starts.
+    virtual bool hasPolarizedForm() const { return false; }
+    virtual void LiStokes(const Scene& scene, const Ray& ray, SampledWavelengths& wl, Sampler& sampler, Arena& arena,
+                          PathStats& stats, StokesEstimate& est) const;
 
 private:
     std::string type_;

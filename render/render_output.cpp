@@ -23,7 +23,7 @@ ImageMetadata renderMetadata(const Scene& scene, const std::string& scenePath, c
     return {
         {"iris.version", IRIS_VERSION},
         {"iris.scene", scenePath},
-        {"iris.mode", opt.rgbMode ? "rgb" : "spectral"},
+        {"iris.mode", opt.rgbMode ? "rgb" : opt.polarized ? "polarized" : "spectral"},
         {"iris.spectral_samples", std::to_string(opt.rgbMode ? 3 : opt.spectralSamples)},
         {"iris.rgb_wavelengths", opt.rgbMode ? strCat(l.x, ",", l.y, ",", l.z) : std::string("")},
         {"iris.wavelength_pdf", opt.rgbMode ? "fixed" : (opt.uniformWavelengths ? "uniform" : "visible")},

@@ -17,8 +17,10 @@
 #include "core/io/output_file.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
+#include "render/polarized_sample.h"
 #include "render/samplers/sampler_description.h"
 #include "render/splat_film.h"
+#include "render/stokes_film.h"
 #include "spectral/xyz.h"
 #include "render/scene_defaults.h"
 
@@ -98,6 +100,17 @@ private:
     double fraction_ = 0;
     std::string label_;
 };
+/// Polarized mode is spectral (not RGB) and needs an integrator with a polarized form; the
+/// `stokes` integrator (Mitsuba 3: "should only be used in polarized mode") needs polarized mode.
+void checkPolarizedMode(const Scene& scene, const RenderOptions& opt) {
+    const IntegratorPtr& integrator = scene.description().integrator;
+    if (opt.polarized && opt.rgbMode) fail("polarized mode is spectral: it cannot be combined with RGB mode");
+    if (opt.polarized && integrator && !integrator->hasPolarizedForm())
+        fail("polarized mode: the ", integrator->type(), " integrator has no polarized form (docs/polarization.md)");
+    if (!opt.polarized && integrator && integrator->type() == "stokes")
+        fail("the stokes integrator needs polarized mode (render --mode polarized)");
+}
+
 }  // namespace
 
 Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(scene), opt_(options) {
@@ -109,6 +122,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(sc
     for (int i = 0; i < 3; ++i)
         if (!(opt_.rgbWavelengths[i] >= kLambdaMin && opt_.rgbWavelengths[i] <= kLambdaMax))
             fail("RGB channel wavelengths must be in [", kLambdaMin, ", ", kLambdaMax, "] nm");
+    checkPolarizedMode(scene, opt_);
     if (opt_.threads < 0) fail("--threads must be >= 0");
     if (opt_.firstSample < 0) fail("the first sample index must be >= 0, got ", opt_.firstSample);
     if (opt_.firstSample > 0 && spp_ == 0) fail("a sample range needs a fixed sample count, not --spp 0");
@@ -122,7 +136,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options) : scene_(sc
 std::string Renderer::settingsKey() const {
     const CameraDescription& c = scene_.description().camera;
     const IntegratorPtr& integrator = scene_.description().integrator;
-    return strCat("scene=", scene_.description().sourceFile, ";mode=", opt_.rgbMode ? "rgb" : "spectral",
+    return strCat("scene=", scene_.description().sourceFile, ";mode=", opt_.rgbMode ? "rgb" : opt_.polarized ? "polarized" : "spectral",
                   ";n=", opt_.rgbMode ? 3 : opt_.spectralSamples, ";rgbl=", opt_.rgbWavelengths.x, ",",
                   opt_.rgbWavelengths.y, ",", opt_.rgbWavelengths.z, ";uniform=", opt_.uniformWavelengths,
                   opt_.independentWavelengths ? ";wavelengths=independent" : "",
@@ -147,7 +161,7 @@ std::string Renderer::stateHeader() const {
                   spp_ > 0 ? std::to_string(opt_.firstSample + spp_) : std::string());
 }
 
-RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral) const {
+RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, SpectralFilm* spectral, StokesFilm* stokes) const {
     const auto start = Clock::now();
     const CameraDescription& camera = scene_.description().camera;
     if (!camera.sensor) fail("the scene has no sensor");
@@ -161,6 +175,8 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     if (integrator->splats()) splats.emplace(film.width(), film.height(), *filter, opt_.rgbMode);
     if (spectral && (spectral->width() != film.width() || spectral->height() != film.height() || film.totalSamples() > 0))
         fail("the spectral film must have the film's size and start empty");
+    if (stokes && (!opt_.polarized || stokes->width() != film.width() || stokes->height() != film.height()))
+        fail("a Stokes film needs polarized mode and the film's size");
 
     std::unique_ptr<tbb::global_control> limit;
     if (opt_.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt_.threads);
@@ -230,14 +246,16 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         const FilterSample fs = filter->sample(sampler.get2D());
                         const Ray ray = camera.sensor->generateRay(vec2(x + 0.5f, y + 0.5f) + fs.offset);
                         ts.arena.reset();
+                        StokesVector S;
                         SampledSpectrum L = splats ? integrator->sample(scene_, ray, wl, sampler, ts.arena, ts.stats, *splats)
-                                                   : integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
+                                          : opt_.polarized ? polarizedSample(*integrator, scene_, ray, wl, sampler, ts.arena, ts.stats, &S)
+                                                           : integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
                         vec3 value;
                         if (opt_.rgbMode)
                             value = vec3(L[0], L[1], L[2]);
                         else
                             value = toXYZ(L, wl);
-                        const bool valid = isFinite(value) && !L.hasNegative();
+                        const bool valid = isFinite(value) && !L.hasNegative() && (!opt_.polarized || validStokes(S));
                         if (!valid) {
                             ++ts.invalid;
                             value = vec3(0.0f);
@@ -248,6 +266,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         }
                         film.addSample(x, y, fs.weight == 1.0f ? value : fs.weight * value);
                         if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
+                        if (stokes) stokes->addSample(x, y, S, wl, fs.weight, valid);
                     }
                 const int done = ++tilesDone;
                 if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);

@@ -15,6 +15,8 @@
 
 namespace iris {
 
+class StokesFilm;  // render/stokes_film.h
+
 struct RenderOptions {
     int spp = -1;                  // samples per pixel (-1: the scene's)
     int firstSample = 0;           // index of the first sample (a shard renders [firstSample, firstSample + spp))
@@ -26,6 +28,7 @@ struct RenderOptions {
     uint64_t seed = 0;
     int threads = 0;               // 0 = all cores
     bool rgbMode = false;          // RGB mode: 3 fixed wavelengths, values are linear Rec.709
+    bool polarized = false;        // polarized spectral mode: Stokes vectors per lane (docs/polarization.md)
     int spectralSamples = 4;       // N wavelengths per path in spectral mode
     vec3 rgbWavelengths = defaultChannelWavelengths();
     bool uniformWavelengths = false;  // ablation: uniform instead of visible-importance wavelength pdf
@@ -60,8 +63,10 @@ class Renderer {
 public:
     Renderer(const Scene& scene, const RenderOptions& options);
     /// Render into `film`; `cancel` may be set asynchronously (signal handler) to stop early.
-    /// `spectral`, if given (spectral mode only), receives the same samples binned by wavelength.
-    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr, SpectralFilm* spectral = nullptr) const;
+    /// `spectral`, if given (spectral mode only), receives the same samples binned by wavelength;
+    /// `stokes` (polarized mode with the `stokes` integrator) the four Stokes components.
+    RenderStats render(Film& film, const std::atomic<bool>* cancel = nullptr, SpectralFilm* spectral = nullptr,
+                       StokesFilm* stokes = nullptr) const;
     /// String identifying everything that determines the image (checkpoint compatibility).
     std::string settingsKey() const;
     /// settingsKey() and a second line "samples=A:B" (the sample range this render is meant to hold;

@@ -3,6 +3,7 @@
 #include "spectral/thin_film_stack.h"
 
 #include "spectral/thin_film_airy.h"
+#include "spectral/thin_film_stack_detail.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,13 +11,10 @@
 
 namespace iris {
 
-namespace {
+using namespace thin_film_detail;
 
-enum class Pol { S, P };
+namespace thin_film_detail {
 
-/// Tilted admittance used for polarisation `pol` (Macleod ch. 2): y_s = q, y_p = q/ñ² (the p form
-/// is the impedance of the tangential H field; both give Born & Wolf's r_s, r_p as (y_i−y_j)/(y_i+y_j)).
-complexd admittance(Pol pol, complexd q, complexd ior) { return pol == Pol::S ? q : q / (ior * ior); }
 
 /// e^{z} − 1 without cancellation for small |z| (expm1 of the real part, −2 sin²(y/2) for cos y − 1).
 complexd expm1c(complexd z) {
@@ -34,11 +32,6 @@ complexd halfExpm1OverQ(complexd q, double k0d) {
     return expm1c(z) / (2.0 * q);
 }
 
-/// Complex amplitude of one polarisation for the transfer-matrix method; returns {r, T}.
-struct AmpRT {
-    complexd r;
-    double T;
-};
 
 /// Both polarisations of the transfer-matrix method in one pass over the layers: q, E = e^{2iδ}
 /// and g = (E − 1)/(2q) of each layer (the csqrt, cexp and expm1 work) are computed once and used
@@ -57,7 +50,8 @@ void transferMatrix(double lambdaNm, const double y0[2], double s, std::span<con
     const complexd qSub = normalWaveNumber(substrateIor, s);
     const complexd ySub[2] = {admittance(Pol::S, qSub, substrateIor), admittance(Pol::P, qSub, substrateIor)};
     complexd B[2] = {1.0, 1.0}, C[2] = {ySub[0], ySub[1]};
-    double logScale[2] = {0.0, 0.0};  // (B, C)_true = (B, C) · e^{logScale}
+    double logScale[2] = {0.0, 0.0};  // (B, C)_true = (B, C) · e^{logScale} · e^{−iΦ}
+    double phase = 0.0;                // Φ = Σ_j Re δ_j, the phase the scaling by e^{iδ_j} removed
     for (auto it = layers.rbegin(); it != layers.rend(); ++it) {
         const complexd n = it->ior;
         const complexd q = normalWaveNumber(n, s);
@@ -65,6 +59,7 @@ void transferMatrix(double lambdaNm, const double y0[2], double s, std::span<con
         const complexd delta = k0d * q;
         const complexd E = std::exp(complexd(0.0, 2.0) * delta);  // |E| = e^{−2 Im δ} ≤ 1
         const complexd g = halfExpm1OverQ(q, k0d);
+        phase += delta.real();
         const complexd n2 = n * n;
         const complexd m00 = 0.5 * (1.0 + E);
         const complexd qqg = q * q * g;
@@ -91,17 +86,20 @@ void transferMatrix(double lambdaNm, const double y0[2], double s, std::span<con
         const complexd den = y0[k] * B[k] + C[k];
         const double aden = std::abs(den);
         if (!(aden > 0) || !std::isfinite(aden)) {
-            out[k] = {complexd(-1.0, 0.0), 0.0};
+            out[k] = {complexd(-1.0, 0.0), 0.0, complexd(0.0, 0.0)};
             continue;
         }
         const complexd r = (y0[k] * B[k] - C[k]) / den;
         const double num = 4.0 * y0[k] * ySub[k].real();
         const double T = num > 0 ? std::exp(std::log(num) - 2.0 * std::log(aden) - 2.0 * logScale[k]) : 0.0;
-        out[k] = {r, T};
+        // Tangential transmission coefficient t = 2 y0 / (y0 B + C)_true (Macleod ch. 2: the
+        // substrate's tangential field per unit incident one), for the polarized mode's phases.
+        const complexd t = 2.0 * y0[k] / den * std::exp(complexd(-logScale[k], phase));
+        out[k] = {r, T, t};
     }
 }
 
-}  // namespace
+}  // namespace thin_film_detail
 
 complexd normalWaveNumber(complexd ior, double sinInvariant) {
     complexd q = std::sqrt(ior * ior - complexd(sinInvariant * sinInvariant, 0.0));
@@ -150,17 +148,7 @@ ThinFilmStackResult thinFilmStackRT(double lambdaNm, double cosThetaIncident, do
     return res;
 }
 
-namespace {
-
-/// Everything the single-film sums need for one polarisation.
-struct FilmInterfaces {
-    complexd r01, r12;
-    complexd tScaled;           // t01 t12 / y0, so T = y0 Re(y2) |tScaled e^{iδ} Σ|²
-    complexd E;                 // e^{2iδ}
-    complexd halfPhase;         // e^{iδ}
-    double y0;
-    complexd y2;
-};
+namespace thin_film_detail {
 
 FilmInterfaces filmInterfaces(Pol pol, double lambdaNm, double cosThetaIncident, double incidentIor,
                               const Layer& film, complexd substrateIor) {
@@ -187,6 +175,10 @@ FilmInterfaces filmInterfaces(Pol pol, double lambdaNm, double cosThetaIncident,
     f.y2 = y2;
     return f;
 }
+
+}  // namespace thin_film_detail
+
+namespace {
 
 /// T from the (scaled) transmitted amplitude sum: T = Re(y2)/y0 |y0 · tScaled · Σ|² = y0 Re(y2)|tScaled Σ|².
 double transmittance(const FilmInterfaces& f, complexd sum) {

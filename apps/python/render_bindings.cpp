@@ -17,6 +17,7 @@
 #include "render/render_output.h"
 #include "render/scene_hash.h"
 #include "render/renderer.h"
+#include "render/stokes_output.h"
 #include "render/scene.h"
 #include "core/source_tree.h"
 
@@ -60,15 +61,16 @@ struct RenderOutput {
     RenderStats stats;
     bool keyboardInterrupt = false;  // stopped by Ctrl-C (the package raises RenderInterrupted)
     std::vector<float> spectral, spectralLambdas;  // (H, W, bins) per-wavelength image and bin centres
+    std::vector<float> stokes;  // (H, W, 12): S0..S3 in the output colour space (the stokes integrator)
 };
 
 /// Renders on a worker thread; the caller (holding the GIL) polls signals and progress.
 class BackgroundRender {
 public:
-    BackgroundRender(const Renderer& renderer, Film& film, SpectralFilm* spectral)
-        : thread_([this, &renderer, &film, spectral] {
+    BackgroundRender(const Renderer& renderer, Film& film, SpectralFilm* spectral, StokesFilm* stokes)
+        : thread_([this, &renderer, &film, spectral, stokes] {
         try {
-            stats_ = renderer.render(film, &cancel_, spectral);
+            stats_ = renderer.render(film, &cancel_, spectral, stokes);
         } catch (...) {
             error_ = std::current_exception();
         }
@@ -122,11 +124,14 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
     // spectral_bins = B equal bins over 360-830 nm (SpectralBins takes their width).
     if (spectralBins > 0)
         spectral = std::make_unique<SpectralFilm>(cam.width, cam.height, SpectralBins((kLambdaMax - kLambdaMin) / double(spectralBins)));
+    // Polarized mode with Mitsuba 3's stokes integrator: its S0..S3 channels (as render writes them).
+    std::unique_ptr<StokesFilm> stokes;
+    if (opt.polarized && integratorType(s) == "stokes") stokes = std::make_unique<StokesFilm>(cam.width, cam.height);
 
     RenderOutput out;
     std::unique_ptr<py::error_already_set> pythonError;  // raised by the progress callback or a signal handler
     {
-        BackgroundRender job(renderer, film, spectral.get());
+        BackgroundRender job(renderer, film, spectral.get(), stokes.get());
         bool finished = false;
         while (!finished) {
             finished = job.waitFor(50);
@@ -160,11 +165,12 @@ RenderOutput render(const PyScene& s, RenderOptions opt, int spectralBins, const
         out.spectral = spectral->image().pixels;
         for (int b = 0; b < spectral->bins().count(); ++b) out.spectralLambdas.push_back(float(spectral->bins().centre(b)));
     }
+    if (stokes) out.stokes = stokesImage(*stokes, colors, outputSpace).pixels;
     out.metadata = renderMetadata(*s.scene, s.path, renderer, opt, out.stats, colors, outputSpace);
     return out;
 }
 
-py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t seed, int threads, bool rgbMode,
+py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t seed, int threads, bool rgbMode, bool polarized,
                         int spectralSamples, const std::vector<float>& rgbWavelengths, bool uniformWavelengths,
                         bool independentWavelengths, const std::string& sampler, int spectralBins, const std::string& outputSpace,
                         const std::string& ocioConfig, const py::object& progress) {
@@ -176,6 +182,7 @@ py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t se
     opt.seed = seed;
     opt.threads = threads;
     opt.rgbMode = rgbMode;
+    opt.polarized = polarized;
     opt.spectralSamples = spectralSamples;
     if (!rgbWavelengths.empty()) opt.rgbWavelengths = vec3(rgbWavelengths[0], rgbWavelengths[1], rgbWavelengths[2]);
     opt.uniformWavelengths = uniformWavelengths;
@@ -191,6 +198,7 @@ py::dict renderToPython(const PyScene& s, int spp, double timeLimit, uint64_t se
         d["spectral"] = ownedArray(std::move(r.spectral), {h, w, bins});
         d["spectral_wavelengths"] = ownedArray(std::move(r.spectralLambdas), {bins});
     }
+    if (!r.stokes.empty()) d["stokes"] = ownedArray(std::move(r.stokes), {h, w, py::ssize_t(12)});
     py::dict meta;
     for (const auto& [k, v] : r.metadata) meta[py::str(k)] = v;
     d["metadata"] = meta;
@@ -228,7 +236,7 @@ void bindRender(py::module_& m) {
     m.def("load_file", &loadFile, py::arg("path"), py::arg("defines"));
     m.def("load_string", &loadString, py::arg("xml"), py::arg("base_dir"), py::arg("defines"));
     m.def("render", &renderToPython, py::arg("scene"), py::arg("spp"), py::arg("time_limit"), py::arg("seed"),
-          py::arg("threads"), py::arg("rgb_mode"), py::arg("spectral_samples"), py::arg("rgb_wavelengths"),
+          py::arg("threads"), py::arg("rgb_mode"), py::arg("polarized"), py::arg("spectral_samples"), py::arg("rgb_wavelengths"),
           py::arg("uniform_wavelengths"), py::arg("independent_wavelengths"), py::arg("sampler"), py::arg("spectral_bins"), py::arg("colorspace"), py::arg("ocio_config"), py::arg("progress"));
     m.def("source_path", &sourcePath, py::arg("relative"));
 }

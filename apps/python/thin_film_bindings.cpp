@@ -1,5 +1,6 @@
 // Thin-film stack optics from Python, over arrays of wavelength and angle: the transfer matrix
-// (thinFilmStackRT), the single-film Airy / truncated-K / incoherent sums (spectral/thin_film_stack.h) and
+// (thinFilmStackRT), the single-film Airy / truncated-K / incoherent sums (spectral/thin_film_stack.h), their
+// Mueller matrices (spectral/thin_film_mueller.h) and
 // the Belcour–Barla RGB reflectance (spectral/belcour_barla.h). The package broadcasts the inputs
 // to flat arrays of one length n; every value is the C++ function's own double result.
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include "apps/python/bindings.h"
 #include "spectral/belcour_barla.h"
 #include "spectral/conductor_presets.h"
+#include "spectral/thin_film_mueller.h"
 #include "spectral/thin_film_stack.h"
 #include "spectral/ior_presets.h"
 
@@ -56,44 +58,87 @@ ThinFilmPhaseMode phaseMode(const std::string& mode) {
     fail("mode: unknown '", mode, "' (expected transfer_matrix, airy, truncated or incoherent)");
 }
 
+/// The validated arguments of the stack functions: flat inputs of length n, L layers.
+struct StackArgs {
+    StackInputs in;
+    ComplexArray iors, sub;
+    RealArray d;
+    py::ssize_t L = 0;
+    bool transfer = true;
+    ThinFilmPhaseMode single = ThinFilmPhaseMode::Exact;
+    int K = 0;
+};
+
+StackArgs stackArgs(const py::array& lambdaNm, const py::array& cosTheta, const py::array& incidentIor, const py::array& layerIors,
+                    const py::array& thicknesses, const py::array& substrateIor, const std::string& mode, int K) {
+    StackArgs a{stackInputs(lambdaNm, cosTheta, incidentIor), inputArray<complexd>(layerIors, "layer iors", 2),
+                inputArray<complexd>(substrateIor, "substrate_ior", 1), inputArray<double>(thicknesses, "thicknesses", 1)};
+    a.L = a.d.shape(0);
+    const py::ssize_t L = a.L, n = a.in.n;
+    if (a.iors.shape(0) != L || a.iors.shape(1) != n) fail("layer iors: expected shape (", L, ", ", n, ")");
+    if (a.sub.shape(0) != n) fail("substrate_ior: expected ", n, " values");
+    for (py::ssize_t j = 0; j < L; ++j) {
+        checkFinite(a.d.data()[j], "thickness of layer", j);
+        if (a.d.data()[j] < 0) fail("layer ", j, ": thickness ", a.d.data()[j], " nm is negative");
+        for (py::ssize_t i = 0; i < n; ++i) checkIndex(a.iors.data()[j * n + i], strCat("layer ", j, " ior").c_str(), i);
+    }
+    for (py::ssize_t i = 0; i < n; ++i) checkIndex(a.sub.data()[i], "substrate_ior", i);
+    a.transfer = mode == "transfer_matrix";
+    a.single = a.transfer ? ThinFilmPhaseMode::Exact : phaseMode(mode);
+    if (!a.transfer && L != 1) fail("mode '", mode, "' is a single-film formula: give exactly one layer (got ", L, ")");
+    if (a.single == ThinFilmPhaseMode::Truncated && K < 0) fail("K: must be >= 0 round trips, got ", K);
+    a.K = K;
+    return a;
+}
+
+/// f(i, layers) for every point i with its stack (layers as Layer values), the GIL released.
+template <typename F>
+void forEachStack(const StackArgs& a, F&& f) {
+    py::gil_scoped_release release;
+    std::vector<Layer> layers(static_cast<size_t>(a.L));
+    for (py::ssize_t i = 0; i < a.in.n; ++i) {
+        for (py::ssize_t j = 0; j < a.L; ++j) layers[size_t(j)] = {a.iors.data()[j * a.in.n + i], a.d.data()[j]};
+        f(i, layers);
+    }
+}
+
 /// (4, n) array of Rs, Rp, Ts, Tp.
 py::array_t<double> stackRT(const py::array& lambdaNm, const py::array& cosTheta, const py::array& incidentIor,
                             const py::array& layerIors, const py::array& thicknesses, const py::array& substrateIor,
                             const std::string& mode, int K) {
-    const StackInputs in = stackInputs(lambdaNm, cosTheta, incidentIor);
-    const ComplexArray iors = inputArray<complexd>(layerIors, "layer iors", 2);
-    const RealArray d = inputArray<double>(thicknesses, "thicknesses", 1);
-    const ComplexArray sub = inputArray<complexd>(substrateIor, "substrate_ior", 1);
-    const py::ssize_t L = d.shape(0), n = in.n;
-    if (iors.shape(0) != L || iors.shape(1) != n) fail("layer iors: expected shape (", L, ", ", n, ")");
-    if (sub.shape(0) != n) fail("substrate_ior: expected ", n, " values");
-    for (py::ssize_t j = 0; j < L; ++j) {
-        checkFinite(d.data()[j], "thickness of layer", j);
-        if (d.data()[j] < 0) fail("layer ", j, ": thickness ", d.data()[j], " nm is negative");
-        for (py::ssize_t i = 0; i < n; ++i) checkIndex(iors.data()[j * n + i], strCat("layer ", j, " ior").c_str(), i);
-    }
-    for (py::ssize_t i = 0; i < n; ++i) checkIndex(sub.data()[i], "substrate_ior", i);
-    const bool transfer = mode == "transfer_matrix";
-    const ThinFilmPhaseMode single = transfer ? ThinFilmPhaseMode::Exact : phaseMode(mode);
-    if (!transfer && L != 1) fail("mode '", mode, "' is a single-film formula: give exactly one layer (got ", L, ")");
-    if (single == ThinFilmPhaseMode::Truncated && K < 0) fail("K: must be >= 0 round trips, got ", K);
-
+    const StackArgs a = stackArgs(lambdaNm, cosTheta, incidentIor, layerIors, thicknesses, substrateIor, mode, K);
+    const py::ssize_t n = a.in.n;
     std::vector<double> out(size_t(4 * n));
-    {
-        py::gil_scoped_release release;
-        std::vector<Layer> layers(static_cast<size_t>(L));
-        for (py::ssize_t i = 0; i < n; ++i) {
-            for (py::ssize_t j = 0; j < L; ++j) layers[size_t(j)] = {iors.data()[j * n + i], d.data()[j]};
-            const double l = in.lambda.data()[i], c = in.cosTheta.data()[i], n0 = in.incident.data()[i];
-            const ThinFilmStackResult r = transfer ? thinFilmStackRT(l, c, n0, layers, sub.data()[i])
-                                               : singleFilmRT(single, K, l, c, n0, layers[0], sub.data()[i]);
-            out[size_t(i)] = r.Rs;
-            out[size_t(n + i)] = r.Rp;
-            out[size_t(2 * n + i)] = r.Ts;
-            out[size_t(3 * n + i)] = r.Tp;
-        }
-    }
+    forEachStack(a, [&](py::ssize_t i, const std::vector<Layer>& layers) {
+        const double l = a.in.lambda.data()[i], c = a.in.cosTheta.data()[i], n0 = a.in.incident.data()[i];
+        const ThinFilmStackResult r = a.transfer ? thinFilmStackRT(l, c, n0, layers, a.sub.data()[i])
+                                                 : singleFilmRT(a.single, a.K, l, c, n0, layers[0], a.sub.data()[i]);
+        out[size_t(i)] = r.Rs;
+        out[size_t(n + i)] = r.Rp;
+        out[size_t(2 * n + i)] = r.Ts;
+        out[size_t(3 * n + i)] = r.Tp;
+    });
     return ownedArray(std::move(out), {4, n});
+}
+
+/// (2, n, 4, 4) array: the reflection and transmission Mueller matrices (spectral/thin_film_mueller.h,
+/// s-axis bases), from stackPolarization (transfer matrix) or singleFilmPolarization (one film).
+py::array_t<double> stackMueller(const py::array& lambdaNm, const py::array& cosTheta, const py::array& incidentIor,
+                                 const py::array& layerIors, const py::array& thicknesses, const py::array& substrateIor,
+                                 const std::string& mode, int K) {
+    const StackArgs a = stackArgs(lambdaNm, cosTheta, incidentIor, layerIors, thicknesses, substrateIor, mode, K);
+    const py::ssize_t n = a.in.n;
+    std::vector<double> out(size_t(2 * n * 16));
+    forEachStack(a, [&](py::ssize_t i, const std::vector<Layer>& layers) {
+        const double l = a.in.lambda.data()[i], c = a.in.cosTheta.data()[i], n0 = a.in.incident.data()[i];
+        const FilmPolarization p = a.transfer ? stackPolarization(l, c, n0, layers, a.sub.data()[i])
+                                              : singleFilmPolarization(a.single, a.K, l, c, n0, layers[0], a.sub.data()[i]);
+        const Mueller4d m[2] = {reflectionMueller(p), transmissionMueller(p)};
+        for (int t = 0; t < 2; ++t)
+            for (int r = 0; r < 4; ++r)
+                for (int col = 0; col < 4; ++col) out[size_t(((t * n + i) * 4 + r) * 4 + col)] = m[t].m[r][col];
+    });
+    return ownedArray(std::move(out), {py::ssize_t(2), n, py::ssize_t(4), py::ssize_t(4)});
 }
 
 /// (n, 3) Belcour–Barla RGB reflectance; substrate indices per channel (n, 3).
@@ -154,6 +199,8 @@ py::array_t<complexd> namedIor(const std::string& name, const py::array& lambdaN
 
 void bindFilm(py::module_& m) {
     m.def("film_stack_rt", &stackRT, py::arg("wavelengths_nm"), py::arg("cos_theta"), py::arg("incident_ior"),
+          py::arg("layer_iors"), py::arg("thicknesses"), py::arg("substrate_ior"), py::arg("mode"), py::arg("K"));
+    m.def("film_stack_mueller", &stackMueller, py::arg("wavelengths_nm"), py::arg("cos_theta"), py::arg("incident_ior"),
           py::arg("layer_iors"), py::arg("thicknesses"), py::arg("substrate_ior"), py::arg("mode"), py::arg("K"));
     m.def("film_belcour_barla", &belcourBarla, py::arg("cos_theta"), py::arg("incident_ior"), py::arg("film_ior"),
           py::arg("thickness_nm"), py::arg("substrate_ior"));

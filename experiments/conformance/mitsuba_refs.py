@@ -90,9 +90,22 @@ def to_xyz(rgb: np.ndarray) -> np.ndarray:
     return rgb @ SRGB_TO_XYZ.T
 
 
+# iris's mode → the Mitsuba variant of its reference (the polarized references are the S0 of
+# `scalar_spectral_polarized`, stored like the others).
+REFERENCE_VARIANT = {"spectral": "spectral", "rgb": "rgb", "polarized": "spectral_polarized"}
+
+
+def has_reference(name: str, mode: str, scene_dir: Path = SCENE_DIR) -> bool:
+    """Whether Mitsuba's reference of test `name` exists in `mode` (the participating_media suite
+    has no polarized references)."""
+    base = scene_dir / "refs" / f"{name}_ref_{REFERENCE_VARIANT[mode]}"
+    return Path(f"{base}.exr").exists() and Path(f"{base}_var.exr").exists()
+
+
 def reference(name: str, mode: str, cache: Path, scene_dir: Path = SCENE_DIR):
-    """(XYZ mean, XYZ per-sample variance) of the reference of test `name` in mode spectral|rgb."""
-    base = scene_dir / "refs" / f"{name}_ref_{mode}"
+    """(XYZ mean, XYZ per-sample variance) of the reference of test `name` in mode
+    spectral|rgb|polarized."""
+    base = scene_dir / "refs" / f"{name}_ref_{REFERENCE_VARIANT[mode]}"
     mean_file, var_file = Path(f"{base}.exr"), Path(f"{base}_var.exr")
     for f in (mean_file, var_file):
         if not f.exists():

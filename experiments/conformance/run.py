@@ -3,7 +3,9 @@
 participating_media test scenes.
 
 Every scene of ../shared/conformance/mitsuba3 is rendered as written, in spectral mode (against
-<name>_ref_spectral.exr) and in RGB mode (against <name>_ref_rgb.exr); the render's per-pixel
+<name>_ref_spectral.exr), in RGB mode (against <name>_ref_rgb.exr) and in polarized mode (against
+<name>_ref_spectral_polarized.exr, the S0 of Mitsuba's scalar_spectral_polarized; the
+participating_media suite has none, so its scenes are skipped in that mode); the render's per-pixel
 variance of the mean comes from `render --variance` (the film's second moments, in CIE XYZ). Welch's
 t-test (Jung, Hanika & Dachsbacher, JCGT 2020) runs per pixel and channel in XYZ and on block means
 (welch.py), against a Šidák threshold at significance 0.01 over all tests. A scene that iris cannot
@@ -44,7 +46,9 @@ from iris_experiments.exr import read_exr, read_exr_metadata  # noqa: E402
 from iris_experiments.report import markdown_table, provenance  # noqa: E402
 
 SIGNIFICANCE = 0.01
-MODES = ("spectral", "rgb")
+MODES = ("spectral", "rgb", "polarized")
+# The mode a failing render is compared with in the diagnosis (iris's and Mitsuba's other variant).
+OTHER_MODE = {"spectral": "rgb", "rgb": "spectral", "polarized": "spectral"}
 QUICK_SPP = 128
 SKIP = 77   # exit code when the shared scenes are not beside the repository (ctest SKIP_RETURN_CODE)
 
@@ -120,7 +124,7 @@ def check_one(args, render_exe, name, mode, workdir) -> dict:
         passed, fraction, _ = welch.mitsuba_z_test(mean, spp, ref_mean, ref_sample_var, SIGNIFICANCE)
         extra = {"mitsuba_ztest": "pass" if passed else "fail", "mitsuba_ztest_fraction": fraction}
         if not r["passed"]:
-            other_render = render(render_exe, scene, "rgb" if mode == "spectral" else "spectral", spp, args.seed + 500,
+            other_render = render(render_exe, scene, OTHER_MODE[mode], spp, args.seed + 500,
                                   workdir / f"{name}_{mode}_other", integrator_defines(args))
             extra["diagnosis"] = diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render)
     pixel_p = r["per_scale"][1]
@@ -147,14 +151,17 @@ def diagnose(args, name, mode, r, mean, var, ref_mean, ref_var, other_render) ->
     k = r["scale"]
     p = r["per_scale"][k]
     by, bx, c = np.unravel_index(np.argmin(p), p.shape)
-    other = "rgb" if mode == "spectral" else "spectral"
+    other = OTHER_MODE[mode]
     mitsuba_other, mitsuba_other_sample_var = mitsuba_refs.reference(name, other, args.cache,
                                                                      args.scene_dir or mitsuba_refs.scene_dir_of(name))
     mitsuba = {mode: (ref_mean, ref_var), other: (mitsuba_other, mitsuba_other_sample_var / mitsuba_refs.REFERENCE_SPP)}
     iris = {mode: (mean, var), other: other_render[:2]}
+    # Spectral and RGB rows compare Mitsuba's and iris's spectral with their RGB renders; polarized
+    # rows their polarized with their spectral ones (table.py names the columns).
+    first, second = ("spectral", "rgb") if mode != "polarized" else ("polarized", "spectral")
     pairs = {"iris_vs_same": (*iris[mode], *mitsuba[mode]),
-             "mitsuba_spectral_vs_rgb": (*mitsuba["spectral"], *mitsuba["rgb"]),
-             "iris_spectral_vs_rgb": (*iris["spectral"], *iris["rgb"]),
+             f"mitsuba_{first}_vs_{second}": (*mitsuba[first], *mitsuba[second]),
+             f"iris_{first}_vs_{second}": (*iris[first], *iris[second]),
              "iris_vs_other": (*iris[mode], *mitsuba[other])}
     out = {"scale": int(k), "block_x": int(bx), "block_y": int(by), "channel": "XYZ"[c], "other_variant": other}
     for key, (m1, v1, m2, v2) in pairs.items():
@@ -215,7 +222,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help=f"{QUICK_SPP} spp instead of Mitsuba's test budget")
     ap.add_argument("--scenes", help="comma-separated test names (default: all), e.g. test_envmap")
-    ap.add_argument("--modes", default=",".join(MODES), help="spectral,rgb (default both)")
+    ap.add_argument("--modes", default=",".join(MODES), help="spectral,rgb,polarized (default all three)")
     ap.add_argument("--spp", type=int, help="samples per pixel (default: 2e6 / pixel count, Mitsuba's test budget)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--reference", choices=("mitsuba", "iris"), default="mitsuba",
@@ -249,6 +256,10 @@ def main(argv=None) -> int:
             args.cache = Path(tmp) / "refs"
             for name in names:
                 for mode in modes:
+                    if args.reference == "mitsuba" and not mitsuba_refs.has_reference(
+                            name, mode, args.scene_dir or mitsuba_refs.scene_dir_of(name)):
+                        print(f"{name:42s} {mode:8s} skipped: Mitsuba has no reference in this mode", flush=True)
+                        continue
                     row = check_one(args, render_exe, name, mode, Path(tmp))
                     rows.append(row)
                     print(f"{name:42s} {mode:8s} {row['verdict'][:90]}"

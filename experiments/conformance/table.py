@@ -6,6 +6,7 @@ table of the failing renders compared at their failing block with both of Mitsub
 
     python3 experiments/conformance/table.py experiments/results/conformance/results.json
     python3 experiments/conformance/table.py --diagnosis experiments/results/conformance/results.json
+    python3 experiments/conformance/table.py --polarized-diagnosis experiments/results/conformance/results.json
 """
 from __future__ import annotations
 
@@ -48,7 +49,7 @@ def diagnosis_table(rows) -> str:
     cells = []
     for r in rows:
         d = r.get("diagnosis")
-        if not d:
+        if not d or "mitsuba_spectral_vs_rgb" not in d:
             continue
         where = "image" if d["scale"] == 0 else (f"pixel ({d['block_x']}, {d['block_y']})" if d["scale"] == 1 else
                                                  f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})")
@@ -61,12 +62,35 @@ def diagnosis_table(rows) -> str:
                                   "Mitsuba spectral / Mitsuba RGB", "iris spectral / iris RGB", "iris / Mitsuba other variant"])
 
 
+def polarized_diagnosis_table(rows) -> str:
+    """The same for failing polarized renders, whose other variant is Mitsuba's spectral one: t and
+    ratio of iris against the polarized reference, of Mitsuba's polarized reference against its
+    spectral one, of iris's polarized render against its spectral one, and of iris against
+    Mitsuba's spectral reference."""
+    def cell(d, key, channel):
+        c = "XYZ".index(channel)
+        return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
+    cells = []
+    for r in rows:
+        d = r.get("diagnosis")
+        if not d or "mitsuba_polarized_vs_spectral" not in d:
+            continue
+        where = "image" if d["scale"] == 0 else (f"pixel ({d['block_x']}, {d['block_y']})" if d["scale"] == 1 else
+                                                 f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})")
+        cells.append({"scene": r["scene"].removeprefix("test_"), "where": f"{where}, {d['channel']}",
+                      "iris / Mitsuba polarized": cell(d, "iris_vs_same", d["channel"]),
+                      "Mitsuba polarized / Mitsuba spectral": cell(d, "mitsuba_polarized_vs_spectral", d["channel"]),
+                      "iris polarized / iris spectral": cell(d, "iris_polarized_vs_spectral", d["channel"]),
+                      "iris / Mitsuba spectral": cell(d, "iris_vs_other", d["channel"])})
+    return markdown_table(cells, ["scene", "where", "iris / Mitsuba polarized", "Mitsuba polarized / Mitsuba spectral",
+                                  "iris polarized / iris spectral", "iris / Mitsuba spectral"])
+
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    diagnosis = args[:1] == ["--diagnosis"]
-    args = args[1:] if diagnosis else args
+    kind = args[0] if args[:1] in (["--diagnosis"], ["--polarized-diagnosis"]) else ""
+    args = args[1:] if kind else args
     if len(args) != 1:
-        sys.exit(f"usage: {sys.argv[0]} [--diagnosis] results.json")
+        sys.exit(f"usage: {sys.argv[0]} [--diagnosis | --polarized-diagnosis] results.json")
     rows = json.loads(Path(args[0]).read_text())["rows"]
-    print(diagnosis_table(rows) if diagnosis else table(rows))
+    print({"--diagnosis": diagnosis_table, "--polarized-diagnosis": polarized_diagnosis_table}.get(kind, table)(rows))

@@ -41,6 +41,13 @@ public:
         if (!s) return std::nullopt;
         return PhaseSample{s->wi, eval(x, wo, s->wi), pdf(x, wo, s->wi)};
     }
+    /// Polarized: the blend of the nested matrices, (1 − w) M₀ + w M₁.
+    MuellerSpectrum evalMueller(const vec3& x, const vec3& wo, const vec3& wi, int n) const override {
+        const float w = weightAt(x);
+        MuellerSpectrum M = phase_[0]->evalMueller(x, wo, wi, n) * (1.0f - w);
+        M += phase_[1]->evalMueller(x, wo, wi, n) * w;
+        return M;
+    }
 
 private:
     float weightAt(const vec3& x) const { return std::clamp(weight_.eval(x), 0.0f, 1.0f); }

@@ -19,6 +19,7 @@
 
 #include "core/math.h"
 #include "core/registry.h"
+#include "spectral/mueller.h"
 
 namespace iris {
 
@@ -38,6 +39,13 @@ public:
     virtual std::optional<PhaseSample> sample(const vec3& x, const vec3& wo, const vec2& u) const = 0;
     /// Solid-angle density of sample() at the world point x.
     virtual float pdf(const vec3& x, const vec3& wo, const vec3& wi) const = 0;
+    /// Polarized mode (docs/polarization.md): p(wo, wi) as a Mueller matrix at n wavelengths, from
+    /// the Stokes basis of the light arriving, stokesBasis(−wi), to that of the light leaving,
+    /// stokesBasis(wo) (world space, spectral/stokes_basis.h). The default depolarizes (Mitsuba 3's
+    /// phase functions are unpolarized); Rayleigh scattering polarizes.
+    virtual MuellerSpectrum evalMueller(const vec3& x, const vec3& wo, const vec3& wi, int n) const {
+        return MuellerSpectrum::depolarizer(SampledSpectrum(n, eval(x, wo, wi)));
+    }
 };
 
 using PhaseFunctionPtr = std::shared_ptr<const PhaseFunction>;

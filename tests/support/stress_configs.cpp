@@ -454,6 +454,22 @@ MaterialStress mask() {
 }
 
 MaterialStress null() { return conserving({{"null", P("null")}}); }
+// Mitsuba 3's ideal polarizing filters (materials/polarizing_filters.cpp): a pass-through lobe that
+// transmits at most all of the light.
+MaterialStress polarizer() {
+    return conserving({{"theta 0", P("polarizer")},
+                       {"theta 45 transmittance 1", P("polarizer").f("theta", 45.0f).f("transmittance", 1.0f)},
+                       {"theta 90 transmittance 0", P("polarizer").f("theta", 90.0f).f("transmittance", 0.0f)},
+                       {"not polarizing", P("polarizer").boolean("polarizing", false)}});
+}
+MaterialStress retarder() {
+    return conserving({{"quarter wave", P("retarder")},
+                       {"half wave theta 30", P("retarder").f("theta", 30.0f).f("delta", 180.0f)},
+                       {"delta 0", P("retarder").f("delta", 0.0f)}});
+}
+MaterialStress circular() {
+    return conserving({{"right", P("circular")}, {"left transmittance 1", P("circular").boolean("left_handed", true).f("transmittance", 1.0f)}});
+}
 
 const std::map<std::string, Builder>& table() {
     static const std::map<std::string, Builder> t = {
@@ -483,6 +499,9 @@ const std::map<std::string, Builder>& table() {
         {"mask", mask},
         {"blendbsdf", blendbsdf},
         {"null", null},
+        {"polarizer", polarizer},
+        {"retarder", retarder},
+        {"circular", circular},
     };
     return t;
 }

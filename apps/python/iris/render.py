@@ -53,6 +53,7 @@ class RenderResult:
     spectral: np.ndarray | None = None  # (H, W, bins) float32 with spectral_bins > 0, else None
     spectral_wavelengths: np.ndarray | None = None  # bin centres (nm)
     interrupted: bool = False  # stopped before reaching spp (Ctrl-C)
+    stokes: np.ndarray | None = None  # (4, H, W, 3) float32: S0..S3 (mode "polarized", stokes integrator)
 
     @property
     def spp(self) -> int:
@@ -111,7 +112,10 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
            wavelength_sampling: str = "hero") -> RenderResult:
     """Render `scene` (from load_file / load_string). The options are the `render` executable's:
     spp (None: the scene's sampler sample_count; 0 with time_limit: render until the time is up),
-    mode "spectral" (spectral_samples wavelengths per path) or "rgb", seed, threads (0: all cores),
+    mode "spectral" (spectral_samples wavelengths per path), "rgb" or "polarized" (spectral with a
+    Stokes vector per wavelength, docs/polarization.md; the image is S0, and a scene whose integrator
+    is Mitsuba 3's `stokes` also returns `stokes`: S0..S3 in the camera's reference basis, shape
+    (4, H, W, 3) in `colorspace`, S1..S3 signed), seed, threads (0: all cores),
     time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
     rgb_wavelengths (R, G, B in nm), uniform_wavelengths, wavelength_sampling ("hero", the default,
     or "independent": render --wavelength-sampling), sampler (None: the scene's <sampler>; or
@@ -122,8 +126,8 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
     wavelength bins on 360–830 nm (render/spectral_film.h), estimated from the same samples."""
     if not isinstance(scene, _iris.Scene):
         raise TypeError(f"scene: expected an iris.Scene (from iris.load_file or iris.load_string), got {type(scene).__name__}")
-    if mode not in ("spectral", "rgb"):
-        raise _iris.Error(f"mode: unknown '{mode}' (expected spectral or rgb)")
+    if mode not in ("spectral", "rgb", "polarized"):
+        raise _iris.Error(f"mode: unknown '{mode}' (expected spectral, rgb or polarized)")
     if wavelength_sampling not in ("hero", "independent"):
         raise _iris.Error(f"wavelength_sampling: unknown '{wavelength_sampling}' (expected hero or independent)")
     if sampler not in (None, "independent", "stratified", "multijitter", "sobol"):
@@ -143,13 +147,16 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
     if callback is not None and not callable(callback):
         raise TypeError("progress: expected a callable taking the fraction done, or True")
     d = _iris.render(scene, spp, limit, _count("seed", seed, 0, 2**63 - 1), _count("threads", threads, 0),
-                     mode == "rgb", _count("spectral_samples", spectral_samples, 1, 32),
+                     mode == "rgb", mode == "polarized", _count("spectral_samples", spectral_samples, 1, 32),
                      _rgb_wavelengths(rgb_wavelengths), bool(uniform_wavelengths),
                      wavelength_sampling == "independent", sampler or "", bins, colorspace, ocio_config or "",
                      callback)
     result = RenderResult(d["image"], d["variance"], d["sample_count"], d["metadata"], d["stats"],
                           spectral=d.get("spectral"), spectral_wavelengths=d.get("spectral_wavelengths"),
                           interrupted=bool(d["stats"]["interrupted"]))
+    if "stokes" in d:
+        h, w = d["image"].shape[:2]
+        result.stokes = np.moveaxis(d["stokes"].reshape(h, w, 4, 3), 2, 0)
     if d["keyboard_interrupt"]:
         raise RenderInterrupted(result)
     return result

@@ -18,6 +18,7 @@ class RenderResult:
     spectral: np.ndarray | None
     spectral_wavelengths: np.ndarray | None
     interrupted: bool
+    stokes: np.ndarray | None
     @property
     def spp(self) -> int: ...
     def write(self, path: str | PathLike[str]) -> None: ...

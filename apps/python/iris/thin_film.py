@@ -93,14 +93,9 @@ def _layers(layers) -> list:
     return out
 
 
-def stack_rt(layers, wavelengths_nm, cos_theta, incident_ior=1.0, substrate_ior=1.5, mode: str = "transfer_matrix",
-             K: int = 1) -> StackRT:
-    """Rs, Rp, Ts, Tp of a stack of layers (top → bottom, each (ior, thickness_nm)) on a substrate,
-    lit from a real incident medium at cos θ. Arrays broadcast with each other (wavelengths,
-    cos θ, the incident index and array-valued layer or substrate indices). Modes:
-    "transfer_matrix" (any number of layers, Born & Wolf §1.6), and for exactly one layer "airy"
-    (closed-form coherent sum), "truncated" (K round trips) and "incoherent" (phase-averaged).
-    Each value is the C++ function's double result (thinFilmStackRT / singleFilmRT)."""
+def _stack_call(fn, layers, wavelengths_nm, cos_theta, incident_ior, substrate_ior, mode, K):
+    """Broadcasts the arguments of stack_rt / stack_mueller to flat arrays, calls the C++ function
+    `fn` on them and returns its result with the broadcast shape."""
     if mode not in MODES:
         raise _iris.Error(f"mode: unknown '{mode}' (expected one of {', '.join(MODES)})")
     ls = _layers(layers)
@@ -122,8 +117,42 @@ def stack_rt(layers, wavelengths_nm, cos_theta, incident_ior=1.0, substrate_ior=
     k = K
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
         raise TypeError(f"K: expected an integer number of round trips, got {K!r}")
-    out = _iris.film_stack_rt(lam_flat, cos_flat, n0_flat, iors, thick, sub, mode, int(k))
+    return fn(lam_flat, cos_flat, n0_flat, iors, thick, sub, mode, int(k)), shape
+
+
+def stack_rt(layers, wavelengths_nm, cos_theta, incident_ior=1.0, substrate_ior=1.5, mode: str = "transfer_matrix",
+             K: int = 1) -> StackRT:
+    """Rs, Rp, Ts, Tp of a stack of layers (top → bottom, each (ior, thickness_nm)) on a substrate,
+    lit from a real incident medium at cos θ. Arrays broadcast with each other (wavelengths,
+    cos θ, the incident index and array-valued layer or substrate indices). Modes:
+    "transfer_matrix" (any number of layers, Born & Wolf §1.6), and for exactly one layer "airy"
+    (closed-form coherent sum), "truncated" (K round trips) and "incoherent" (phase-averaged).
+    Each value is the C++ function's double result (thinFilmStackRT / singleFilmRT)."""
+    out, shape = _stack_call(_iris.film_stack_rt, layers, wavelengths_nm, cos_theta, incident_ior, substrate_ior, mode, K)
     return StackRT(*(out[c].reshape(shape) for c in range(4)))
+
+
+class StackMueller(NamedTuple):
+    """Mueller matrices of a stack's reflection and transmission, shape (..., 4, 4)."""
+    R: np.ndarray
+    T: np.ndarray
+
+
+def stack_mueller(layers, wavelengths_nm, cos_theta, incident_ior=1.0, substrate_ior=1.5, mode: str = "transfer_matrix",
+                  K: int = 1) -> StackMueller:
+    """The Mueller matrices of the stack's reflection and transmission (polarized mode,
+    docs/polarization.md), arguments and broadcasting as stack_rt; R and T have shape (..., 4, 4)
+    for the broadcast shape (...). Both are in the bases whose reference vector is the s axis
+    (normal to the plane of incidence) on both sides, in the interface layout of Mitsuba 3's
+    mueller::specular_reflection:
+        [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]],
+    A = (P_s + P_p)/2, B = (P_s − P_p)/2 (P = R or T of stack_rt), C + iD = r_s r_p* for the
+    reflection and √(T_s T_p) t_s t_p*/|t_s t_p*| for the transmission (spectral/thin_film_polarization.h).
+    So M @ (1, 0, 0, 0) is (R, (Rs − Rp)/2, 0, 0): unpolarized light's response is stack_rt's R.
+    In mode "truncated" the powers are clamped as the materials clamp them (R ≤ 1, T ≤ 1 − R),
+    unlike stack_rt's raw sums."""
+    out, shape = _stack_call(_iris.film_stack_mueller, layers, wavelengths_nm, cos_theta, incident_ior, substrate_ior, mode, K)
+    return StackMueller(out[0].reshape(shape + (4, 4)), out[1].reshape(shape + (4, 4)))
 
 
 def _broadcast_with_rgb(scalars: dict, rgb_name: str, rgb: np.ndarray):

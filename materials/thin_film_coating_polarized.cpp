@@ -1,0 +1,49 @@
+// ThinFilmCoating::polarization: the stack's s and p terms for the polarized mode
+// (docs/polarization.md), from the same layers, media and phase mode as stackRT and
+// stackRTFromBelow (materials/thin_film_coating.cpp), through spectral/thin_film_polarization.h.
+#include "materials/thin_film_coating.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace iris {
+
+namespace {
+
+/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]) and the cross terms
+/// kept within √(P_s P_p) (their magnitude for a coherent sum).
+FilmPolarization clamped(FilmPolarization p) {
+    ThinFilmStackResult& r = p.power;
+    r.Rs = std::clamp(r.Rs, 0.0, 1.0);
+    r.Rp = std::clamp(r.Rp, 0.0, 1.0);
+    r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
+    r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
+    auto bound = [](complexd c, double limit) {
+        const double m = std::abs(c);
+        return m > limit && m > 0 ? c * (limit / m) : c;
+    };
+    p.crossR = bound(p.crossR, std::sqrt(r.Rs * r.Rp));
+    p.crossT = bound(p.crossT, std::sqrt(r.Ts * r.Tp));
+    return p;
+}
+
+}  // namespace
+
+FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool below) const {
+    if (rgb_ || belcourBarla_) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+    const int stride = 1 + nExtra_;
+    Layer rows[9];
+    for (int j = 0; j < stride; ++j) {
+        const int from = below ? stride - 1 - j : j;  // lit from the substrate: the reversed stack
+        rows[j] = layers_ ? layers_[k * stride + from] : Layer{film_[k], thickness_};
+    }
+    const double incident = below ? substrate_[k].real() : extIor_;
+    const complexd substrate = below ? complexd(extIor_, 0.0) : substrate_[k];
+    if (nExtra_ == 0)
+        return clamped(singleFilmPolarization(mode_, bounces_, lambda_[k], cosTheta, incident, rows[0], substrate));
+    return clamped(stackPolarization(lambda_[k], cosTheta, incident, std::span<const Layer>(rows, size_t(stride)), substrate));
+}
+
+}  // namespace iris

@@ -1,0 +1,42 @@
+// A film stack's polarization terms (polarized mode, docs/polarization.md): what the Mueller
+// matrices of its reflection and transmission need besides the s and p powers — the cross terms
+// C + iD of the interface layout (spectral/mueller.h mueller::interfaceMueller):
+//   reflection:   C + iD = r_s r_p*                      (|C + iD|² = R_s R_p for coherent sums)
+//   transmission: C + iD = √(T_s T_p) · t_s t_p* / |t_s t_p*|
+// from the stack's complex amplitudes in iris's conventions (docs/thin_film.md §1: e^{−iωt},
+// ñ = n + ik, Born & Wolf's r_p), which is Mitsuba 3's a_p a_s* (its mueller::specular_reflection
+// with e^{+iωt} amplitudes). The incoherent phase mode sums the Mueller matrices of the beams
+// (Heavens ch. 4's series for the cross terms as for the powers), which partially depolarizes.
+#pragma once
+
+#include <span>
+
+#include "spectral/thin_film_stack.h"
+
+namespace iris {
+
+struct FilmPolarization {
+    ThinFilmStackResult power;       // R_s, R_p, T_s, T_p (as thinFilmStackRT / singleFilmRT)
+    complexd crossR{0.0, 0.0};       // C + iD of the reflection
+    complexd crossT{0.0, 0.0};       // C + iD of the transmission
+};
+
+/// Complex amplitudes of a stack by the transfer-matrix method (any number of layers): the
+/// reflection amplitudes r_s, r_p and the tangential transmission coefficients t_s, t_p.
+struct StackAmplitudes {
+    complexd rs, rp, ts, tp;
+    ThinFilmStackResult power;
+};
+StackAmplitudes thinFilmStackAmplitudes(double lambdaNm, double cosThetaIncident, double incidentIor,
+                                        std::span<const Layer> layers, complexd substrateIor);
+
+/// The terms of an exact (coherent, all round trips) stack of any number of layers.
+FilmPolarization stackPolarization(double lambdaNm, double cosThetaIncident, double incidentIor, std::span<const Layer> layers,
+                                   complexd substrateIor);
+/// The terms of one film in a phase mode (docs/thin_film.md §2); K is used by Truncated only. The
+/// truncated sums' powers are clamped as the materials clamp them (R ≤ 1, T ≤ 1 − R), the cross
+/// terms scaled to match.
+FilmPolarization singleFilmPolarization(ThinFilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident,
+                                        double incidentIor, const Layer& film, complexd substrateIor);
+
+}  // namespace iris
