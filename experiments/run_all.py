@@ -32,7 +32,7 @@ from iris_experiments import exr, report, tools  # noqa: E402
 from iris_experiments.errors import ExperimentError  # noqa: E402
 
 EXPERIMENTS = ["channel_count", "per_bounce_phase", "approximation_error", "thesis_reproduction", "sampler_efficiency",
-               "media_mis", "industry_thin_film", "caustics"]
+               "media_mis", "industry_thin_film", "caustics", "polarization"]
 
 
 def parse_args(argv):
