@@ -65,7 +65,7 @@ uint64_t skipChannelList(std::istream& in, const std::string& path) {
 /// What one header says that sizes OpenEXR's buffers.
 struct BufferClaims {
     uint64_t channels = 0;
-    int compression = 0;
+    int compression = 3;  // ZIP: OpenEXR's Header default, kept when no attribute is named "compression"
     std::string dataWindow;  // box2i: 16 bytes when present
     uint32_t tileX = 0, tileY = 0;  // tiledesc "tiles", 0 for scan-line parts
 };

@@ -160,7 +160,8 @@ namespace {
 /// Bytes of an EXR header claiming w x h FLOAT "Y" pixels with the given compression code (0: none,
 /// 4: PIZ) and, when tileX > 0, tiles of tileX x tileY pixels, with a valid-looking offset table but
 /// no pixel data (OpenEXR file layout, openexr.com).
-std::string hugeExrHeader(int w, int h, char compression = 0, int tileX = 0, int tileY = 0) {
+/// compression -1: no "compression" attribute (OpenEXR then keeps its Header default, ZIP).
+std::string hugeExrHeader(int w, int h, int compression = 0, int tileX = 0, int tileY = 0) {
     std::string s;
     auto i32 = [&](int32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); };
     auto attr = [&](const std::string& name, const std::string& type, const std::string& value) {
@@ -176,7 +177,7 @@ std::string hugeExrHeader(int w, int h, char compression = 0, int tileX = 0, int
     i32(20000630);
     i32(tileX > 0 ? 2 | 0x200 : 2);  // version 2; flag 0x200: single-part tiled
     attr("channels", "chlist", std::string("Y\0", 2) + ints({2}) + std::string(4, '\0') + ints({1, 1}) + std::string(1, '\0'));
-    attr("compression", "compression", std::string(1, compression));
+    if (compression >= 0) attr("compression", "compression", std::string(1, char(compression)));
     attr("dataWindow", "box2i", ints({0, 0, w - 1, h - 1}));
     attr("displayWindow", "box2i", ints({0, 0, w - 1, h - 1}));
     attr("lineOrder", "lineOrder", std::string(1, '\0'));
@@ -221,6 +222,12 @@ TEST_F(ImageIO, ExrCompressorBlockIsRefusedBeforeAllocating) {
     const std::string none = file("none.exr");
     std::ofstream(none, std::ios::binary) << hugeExrHeader(1 << 25, 1, 0);
     expectRefusal(none, "cannot read");
+    // Without a "compression" attribute OpenEXR keeps its default, ZIP (16 lines a block): a
+    // one-line window 2^24 pixels wide is then a 2 GB block, not a 128 MB uncompressed one (found by
+    // fuzz_image: tests/fuzz/corpus/image/oom-exr-default-compression allocated 1 GiB).
+    const std::string unnamed = file("default_compression.exr");
+    std::ofstream(unnamed, std::ios::binary) << hugeExrHeader(1 << 24, 1, -1);
+    expectRefusal(unnamed, "needs more than 1 GB per block of 16 scan lines");
 }
 
 TEST_F(ImageIO, ExrTileClaimIsRefusedBeforeAllocating) {
