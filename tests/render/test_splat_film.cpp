@@ -58,7 +58,8 @@ TEST(SplatFilm, SumsAreTheSameBitsForAnyOrderAndThreadCount) {
     EXPECT_EQ(a.meanImage(), b.meanImage());
     // The sums carry: with a box filter (every splat inside the image) the total is what doubles
     // give, to their precision.
-    SplatFilm boxed(w, h, *makeFilter("box"), true);
+    const ReconstructionFilterPtr box = makeFilter("box");  // the film keeps a reference: it must outlive it
+    SplatFilm boxed(w, h, *box, true);
     for (const Splat& s : splats) add(boxed, s);
     double total = 0, expected = 0;
     for (float v : flushed(boxed).meanImage()) total += v;
