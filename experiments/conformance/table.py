@@ -38,21 +38,32 @@ def table(rows) -> str:
     return markdown_table(cells, cols)
 
 
+def cell(d, key, channel):
+    """Ratio and Welch t of one comparison of a diagnosis, in one XYZ channel."""
+    c = "XYZ".index(channel)
+    return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
+
+
+def failing_block(d) -> str:
+    """Where a diagnosis looked: the whole image, a pixel or a block of the failing scale."""
+    if d["scale"] == 0:
+        return "image"
+    if d["scale"] == 1:
+        return f"pixel ({d['block_x']}, {d['block_y']})"
+    return f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})"
+
+
 def diagnosis_table(rows) -> str:
     """One line per failing render: at its failing block and channel, t and ratio of iris against
     Mitsuba's reference of the same variant, of Mitsuba's spectral reference against its RGB one,
     of iris's spectral render against its RGB one, and of iris against Mitsuba's reference of the
     other variant."""
-    def cell(d, key, channel):
-        c = "XYZ".index(channel)
-        return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
     cells = []
     for r in rows:
         d = r.get("diagnosis")
         if not d or "mitsuba_spectral_vs_rgb" not in d:
             continue
-        where = "image" if d["scale"] == 0 else (f"pixel ({d['block_x']}, {d['block_y']})" if d["scale"] == 1 else
-                                                 f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})")
+        where = failing_block(d)
         cells.append({"scene": r["scene"].removeprefix("test_"), "mode": r["mode"], "where": f"{where}, {d['channel']}",
                       "iris / Mitsuba same variant": cell(d, "iris_vs_same", d["channel"]),
                       "Mitsuba spectral / Mitsuba RGB": cell(d, "mitsuba_spectral_vs_rgb", d["channel"]),
@@ -67,16 +78,12 @@ def polarized_diagnosis_table(rows) -> str:
     ratio of iris against the polarized reference, of Mitsuba's polarized reference against its
     spectral one, of iris's polarized render against its spectral one, and of iris against
     Mitsuba's spectral reference."""
-    def cell(d, key, channel):
-        c = "XYZ".index(channel)
-        return f"{d[key]['ratio'][c]:.5f} (t {d[key]['t'][c]:+.1f})"
     cells = []
     for r in rows:
         d = r.get("diagnosis")
         if not d or "mitsuba_polarized_vs_spectral" not in d:
             continue
-        where = "image" if d["scale"] == 0 else (f"pixel ({d['block_x']}, {d['block_y']})" if d["scale"] == 1 else
-                                                 f"{d['scale']}x{d['scale']} block ({d['block_x']}, {d['block_y']})")
+        where = failing_block(d)
         cells.append({"scene": r["scene"].removeprefix("test_"), "where": f"{where}, {d['channel']}",
                       "iris / Mitsuba polarized": cell(d, "iris_vs_same", d["channel"]),
                       "Mitsuba polarized / Mitsuba spectral": cell(d, "mitsuba_polarized_vs_spectral", d["channel"]),
