@@ -4,11 +4,13 @@ machine in one run, compares with the targets and, where a target is missed, pro
 relevant run with `perf record` and summarises where the time goes.
 
     /usr/bin/python3 experiments/perf/run.py [--quick] [--build DIR] [--out DIR] [--no-perf] [--no-instructions]
+        [--peers-bin ../shared/peers/bin] [--peers-rounds 5]
 
 Writes <out>/report.md, <out>/measurements.json, <out>/targets.csv and <out>/profiles/*.txt
 (default out: experiments/perf/results). Needs the benchmarks built in --build (default build-perf,
 configured with -DIRIS_BUILD_BENCHMARKS=ON): render, bench_perf_thinfilm,
-bench_perf_tables. Timings are never pass/fail tests: every figure is a ratio or value measured in
+bench_perf_tables. Target 8 (peers, issue 37) runs experiments/perf/peers.py with the peer renderers
+of --peers-bin and adds its tables as the "Peers" section. Timings are never pass/fail tests: every figure is a ratio or value measured in
 this run, next to its target.
 """
 import argparse
@@ -25,7 +27,8 @@ import sys
 import tempfile
 import time
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
 SCENES = os.path.join(REPO, "experiments", "perf", "scenes")
 MESHES = os.path.join(REPO, "scenes", "meshes")
 
@@ -520,6 +523,39 @@ def t7_scaling_memory(ctx):
 
 # ----------------------------------------------------------------------------- report
 
+def t8_peers(ctx):
+    """Side by side with the peer renderers (issue 37): experiments/perf/peers.py, whose tables become
+    the report's "Peers" section; the issue's goals are rows of the target table."""
+    if not ctx.args.peers_bin:
+        ctx.row("8", "Peers side by side", "not measured (no --peers-bin)", "", None, "")
+        return
+    sys.path.insert(0, HERE)
+    import peers
+    out = os.path.join(ctx.out, "peers")
+    rounds = "2" if ctx.quick else str(ctx.args.peers_rounds)
+    peers.main(["--iris", ctx.exe("render"), "--peers-bin", ctx.args.peers_bin, "--rounds", rounds, "--out", out])
+    with open(os.path.join(out, "peers.json")) as f:
+        sbs = json.load(f)["side_by_side"]
+    goals = {"spheres": 1.0, "bunny": 0.5, "dragon": 0.5}
+    for scene, r in sbs.items():
+        t = r["times"]
+        if "mts-rgb" not in t:
+            continue
+        st = peers.ratio_stats(t["iris-s4"], t["mts-rgb"])
+        goal = goals.get(scene)
+        ctx.row("8", f"Whole-process time, {scene}: iris spectral N = 4 ÷ Mitsuba 0.6 RGB (2 threads, median of "
+                f"{len(t['iris-s4'])} per-round ratios)", f"{st['median']:.2f}× (rounds {st['min']:.2f}–{st['max']:.2f})",
+                f"≤ {goal}×" if goal else "—", st["median"] <= goal if goal else None,
+                f"{100 * (1 - st['median'] / goal):.0f} % below" if goal and st["median"] <= goal else
+                (f"{st['median'] / goal:.2f}× the target" if goal else ""))
+    with open(os.path.join(out, "peers.md")) as f:
+        text = f.read()
+    start = text.find("## Side by side")
+    end = text.find("\n## Equal time")
+    ctx.peers_text = "## Peers\n\nFrom `experiments/perf/peers.py` (its own output: `peers/peers.md`).\n\n" + \
+        text[start:end if end > 0 else None].replace("## Side by side", "### Side by side", 1)
+
+
 def machine_info():
     cpu = "unknown"
     with open("/proc/cpuinfo") as f:
@@ -585,6 +621,8 @@ def write_report(ctx, started, finished):
     L.append(scaling_text(ctx))
     L.append(wins_text(ctx))
     L.append(payg_text(ctx))
+    if getattr(ctx, "peers_text", None):
+        L.append(ctx.peers_text)
     L.append("## Raw data\n\n`measurements.json` (all runs), `targets.csv` (the table above), `profiles/*.txt` "
              "(perf summaries).\n")
     with open(os.path.join(ctx.out, "report.md"), "w") as f:
@@ -876,7 +914,10 @@ def main():
     ap.add_argument("--no-perf", action="store_true", help="skip perf profiles")
     ap.add_argument("--no-instructions", action="store_true",
                     help="skip the callgrind instruction counts of targets 2 and 3")
-    ap.add_argument("--only", default="1234567", help="targets to measure (digits), default all")
+    ap.add_argument("--only", default="12345678", help="targets to measure (digits), default all")
+    ap.add_argument("--peers-bin", help="folder of peer renderers laid out as ../shared/peers/bin (target 8; "
+                    "without it target 8 is not measured)")
+    ap.add_argument("--peers-rounds", type=int, default=5, help="rounds of target 8 (experiments/perf/peers.py)")
     args = ap.parse_args()
     ctx = Ctx(args)
     for exe in ["render", "bench_perf_thinfilm", "bench_perf_tables"]:
@@ -902,7 +943,7 @@ def main():
     started = datetime.datetime.utcnow().isoformat(timespec="seconds") + "Z"
     ctx.sample_load("start")
     steps = [("1", t1_ray_rates), ("2", t2_spectral_cost), ("3", t3_thesis_models), ("4", t4_thin_film),
-             ("5", t5_tables), ("6", t6_startup), ("7", t7_scaling_memory)]
+             ("5", t5_tables), ("6", t6_startup), ("7", t7_scaling_memory), ("8", t8_peers)]
     for key, fn in steps:
         if key not in args.only:
             continue

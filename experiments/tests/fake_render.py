@@ -30,6 +30,7 @@ def main(argv):
     p.add_argument("--sampler", default="independent", choices=sorted(NOISE_OF_SAMPLER))
     p.add_argument("-D", action="append", default=[])
     p.add_argument("--quiet", action="store_true")
+    p.add_argument("--no-png", action="store_true")
     a = p.parse_args(argv)
     defines = dict(d.split("=", 1) for d in a.D)
     if defines.get("fail") == "1":
