@@ -96,9 +96,11 @@ def command(name: str, exe: str, scene: Path, out: Path, threads: int, extra=())
     return [exe, "-t", str(threads), "-d", str(out), *extra, str(scene)]
 
 
-def run_wall(cmd: list[str]) -> tuple[float, int]:
+def run_wall(cmd: list[str], cwd: Path) -> tuple[float, int]:
+    """Wall seconds and exit code of one whole process, run in the scene copies' folder (Mitsuba 0.6
+    writes its log file into the working directory)."""
     t0 = time.perf_counter()
-    rc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+    rc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=cwd).returncode
     return time.perf_counter() - t0, rc
 
 
@@ -202,13 +204,13 @@ def side_by_side(args, found, work: Path) -> dict:
         names = list(found)
         cmds = {n: command(n, found[n], scene_for(n, files), out_for(n, scene, work, "t"), args.threads) for n in names}
         for n in names:  # warm-up
-            run_wall(cmds[n])
+            run_wall(cmds[n], work)
         times = {n: [] for n in names}
         codes = {n: [] for n in names}
         for r in range(args.rounds):
             for k in range(len(names)):
                 n = names[(k + r) % len(names)]
-                sec, rc = run_wall(cmds[n])
+                sec, rc = run_wall(cmds[n], work)
                 times[n].append(sec)
                 codes[n].append(rc)
             print(f"peers: {scene} round {r + 1}/{args.rounds}: " +
@@ -237,7 +239,7 @@ def equal_time_run(args, name, exe, scene, spp, work, reference):
     seed = "7" if reference else "1"
     extra = {"iris": ["--sampler", "sobol", "--seed", seed], "tungsten": ["--seed", seed]}.get(name.split("-")[0], [])
     out = out_for(name, scene, work, f"et{spp}")
-    sec, rc = run_wall(command(name, exe, scene_for(name, files), out, args.threads, extra))
+    sec, rc = run_wall(command(name, exe, scene_for(name, files), out, args.threads, extra), work)
     return sec, rc, luminance(output_file(name, out, scene))
 
 
