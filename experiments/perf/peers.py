@@ -18,7 +18,8 @@ two analytic spheres (rough plastic, glass) on a floor under an area light.
    draw the same scene.
 2. Equal time (`--equal-time`): each renderer with its best sampler available (iris `sobol`,
    Mitsuba 0.6 `stratified` — the prebuilt 0.6 has no `ldsampler`/`sobol` plugin —, Tungsten's
-   default `stratified_sampler`), at a reduced resolution, renders sample counts 4, 8, … and a long
+   default `stratified_sampler`; iris also with `volpath`, whose shadow rays cross the thin glass
+   sheet), at a reduced resolution, renders the sample counts of --et-spp and a long
    reference of its own (`--ref-spp`); error = relMSE of the luminance against that reference
    (mean of (x − r)² / (r² + 0.01)), wall time per run as above. Each renderer's own reference makes
    the figure its noise at a given time (renderers differ slightly in their models: the luminance
@@ -59,13 +60,17 @@ PEER_LAYOUT = {"mts-rgb": "mitsuba06-rgb/mitsuba", "mts-s16": "mitsuba06-spec16/
 PEER_LABEL = {"mts-rgb": "Mitsuba 0.6 RGB", "mts-s16": "Mitsuba 0.6 spectral (16)", "tungsten": "Tungsten"}
 IRIS_VARIANTS = {"iris-s4": ["--spectral-samples", "4"], "iris-s16": ["--spectral-samples", "16"],
                  "iris-rgb": ["--mode", "rgb"]}
+# Part 2 adds iris's volumetric path tracer on the same scene: its shadow rays cross pass-through
+# lobes (thindielectric's transmission) with their weight where `path`, like Mitsuba's path tracers,
+# tests plain occlusion (materials/thindielectric.cpp) — the integrator a user would pick for that.
+EQUAL_TIME_IRIS = {"iris-s4": "path", "iris-s4-volpath": "volpath", "iris-rgb": "path"}
 REC709_Y = np.array([0.2126, 0.7152, 0.0722])  # ITU-R BT.709 luminance weights
 
 
 # ---------------------------------------------------------------- scene copies and commands
 
 def scene_text(path: Path, width: int | None = None, height: int | None = None, spp: int | None = None,
-               sampler: str | None = None) -> str:
+               sampler: str | None = None, integrator: str | None = None) -> str:
     """A peer scene file with its resolution, sample count and sampler replaced (text edits of the
     Mitsuba XML or Tungsten JSON the peer folder defines; None keeps the file's value)."""
     s = path.read_text()
@@ -82,6 +87,8 @@ def scene_text(path: Path, width: int | None = None, height: int | None = None, 
         s = re.sub(r'(<integer name="sampleCount" value=")\d+', rf'\g<1>{spp}', s)
     if sampler:
         s = re.sub(r'<sampler type="\w+">', f'<sampler type="{sampler}">', s)
+    if integrator:
+        s = re.sub(r'<integrator type="\w+">', f'<integrator type="{integrator}">', s)
     return s
 
 
@@ -90,7 +97,7 @@ def command(name: str, exe: str, scene: Path, out: Path, threads: int, extra=())
     fileFormat, set in the scene copy; Tungsten: the PFM its scene names, in folder `out`)."""
     if name.startswith("iris"):
         return [exe, str(scene), "--threads", str(threads), "--quiet", "--no-png", "-o", str(out),
-                *IRIS_VARIANTS[name], *extra]
+                *IRIS_VARIANTS[name.removesuffix("-volpath")], *extra]
     if name.startswith("mts"):
         return [exe, "-p", str(threads), "-q", "-o", str(out), *extra, str(scene)]
     return [exe, "-t", str(threads), "-d", str(out), *extra, str(scene)]
@@ -235,7 +242,8 @@ def equal_time_run(args, name, exe, scene, spp, work, reference):
     sample stream independent of the runs': iris and Tungsten with another seed; Mitsuba 0.6, which
     has no seed parameter, with the `independent` sampler instead of `stratified`."""
     mts_sampler = ("independent" if reference else "stratified") if name.startswith("mts") else None
-    files = prepare(args, scene, work, width=args.et_width, height=args.et_height, spp=spp, sampler=mts_sampler)
+    files = prepare(args, scene, work, width=args.et_width, height=args.et_height, spp=spp, sampler=mts_sampler,
+                    integrator=EQUAL_TIME_IRIS.get(name))
     seed = "7" if reference else "1"
     extra = {"iris": ["--sampler", "sobol", "--seed", seed], "tungsten": ["--seed", seed]}.get(name.split("-")[0], [])
     out = out_for(name, scene, work, f"et{spp}")
@@ -246,7 +254,8 @@ def equal_time_run(args, name, exe, scene, spp, work, reference):
 def equal_time(args, found, work: Path) -> dict:
     """Part 2: per scene and renderer, the reference, then the sample counts of --et-spp."""
     res = {}
-    names = [n for n in found if n in ("iris-s4", "iris-rgb") or not n.startswith("iris")]
+    names = [*EQUAL_TIME_IRIS, *(n for n in found if not n.startswith("iris"))]
+    found = {**found, **{n: args.iris for n in EQUAL_TIME_IRIS}}
     for scene in args.scenes_list:
         res[scene] = {}
         for n in names:
