@@ -17,7 +17,7 @@ verdict is expected to fail there; the table says so for each scene (column `ptr
 On glossy surfaces (the thin film on gold, alpha 0.1, under the constant sky) its splats are
 heavy-tailed: at low sample counts the image mean is low and the sample variance too small, so the
 t-test fails although the mean converges (Y ratio 0.73 at 32 spp, 1.02 at 1024 spp in a 24² run);
-a failing verdict there is not by itself a bias. No report from this script is committed yet.
+a failing verdict there is not by itself a bias. Its report is experiments/results/light_tracing_agreement/.
 
     python3 experiments/light_tracing_agreement.py                 # everything
     python3 experiments/light_tracing_agreement.py --quick         # 24² pixels, few samples (smoke)
@@ -129,9 +129,9 @@ def compare(args, render_exe, name, scene, defines, mode, workdir) -> list[dict]
     return rows
 
 
-def write_report(args, rows, seconds, out: Path) -> Path:
+def write_report(args, rows, seconds, out: Path, prov: dict) -> Path:
+    """report.md and results.json; `prov` is the source's provenance taken when the run started."""
     out.mkdir(parents=True, exist_ok=True)
-    prov = provenance()
     columns = ["scene", "mode", "integrator", "verdict", "p-min", "threshold", "at", "Y ratio", "ptracer sees every surface"]
     table = [dict(zip(columns, [r["scene"], r["mode"], r["integrator"], r["verdict"], f"{r['p_min']:.3g}", f"{r['threshold']:.3g}",
                                 {0: "image", 1: "1x1"}.get(r["scale"], f"{r['scale']}x{r['scale']}"), f"{r['ratio_Y']:.4f}",
@@ -167,6 +167,7 @@ def main(argv=None) -> int:
     args.spp = args.spp or (32 if args.quick else 256)
     args.res = args.res or (24 if args.quick else 48)
     render_exe = tools.tool("render", tools.build_dir(args.build_dir))
+    prov = provenance()  # at the start: the tree may change while the renders run
     start = time.monotonic()
     rows = []
     with tempfile.TemporaryDirectory(prefix="iris_lt_agreement_") as tmp:
@@ -177,7 +178,7 @@ def main(argv=None) -> int:
                     rows.append(r)
                     print(f"{name:40s} {mode:8s} {r['integrator']:8s} {r['verdict']}  p_min {r['p_min']:.3g} "
                           f"(threshold {r['threshold']:.3g})  Y ratio {r['ratio_Y']:.4f}", flush=True)
-    print(f"report: {write_report(args, rows, time.monotonic() - start, Path(args.out))}")
+    print(f"report: {write_report(args, rows, time.monotonic() - start, Path(args.out), prov)}")
     return 0
 
 
