@@ -21,7 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import tools  # noqa: E402,F401
-from iris_experiments.convergence import ConvergenceStudy, mean_relmse_at_spp  # noqa: E402
+from iris_experiments.convergence import mean_relmse_at_spp  # noqa: E402
 from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
 from iris_experiments.report import fmt, markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
@@ -59,10 +59,7 @@ class Caustics(ConvergenceExperiment):
 
     def sweeps(self, quick, args):
         c = self.cfg(quick)
-        conv = c["convergence"]
-        self.study = ConvergenceStudy({i: {"integrator": i} for i in INTEGRATORS}, BASELINE, {"integrator": "bdpt"},
-                                      conv["spp_levels"], conv["seeds"], c["ref_spp"],
-                                      [1000 + i for i in range(c["ref_seeds"])], time_limit=conv["time_limit"])
+        self.study = self.convergence_study(quick, {i: {"integrator": i} for i in INTEGRATORS}, BASELINE, {"integrator": "bdpt"})
         return self.study.sweeps(self.scene_paths(), {label: {"res": c["res"], **SCENE_DEFINES[label]} for label in SCENES})
 
     def analyse(self, ctx):

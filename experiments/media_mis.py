@@ -14,7 +14,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import tools  # noqa: E402,F401
-from iris_experiments.convergence import ConvergenceStudy, mean_relmse_at_spp  # noqa: E402
+from iris_experiments.convergence import mean_relmse_at_spp  # noqa: E402
 from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
 from iris_experiments.report import fmt, markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
@@ -41,12 +41,9 @@ class MediaMIS(ConvergenceExperiment):
     FULL, QUICK = FULL, QUICK
 
     def sweeps(self, quick, args):
-        c = self.cfg(quick)
-        conv = c["convergence"]
-        self.study = ConvergenceStudy({i: {"integrator": i} for i in INTEGRATORS}, BASELINE, {"integrator": "volpathmis"},
-                                      conv["spp_levels"], conv["seeds"], c["ref_spp"],
-                                      [1000 + i for i in range(c["ref_seeds"])], time_limit=conv["time_limit"])
-        return self.study.sweeps(self.scene_paths(), {label: {"res": c["res"]} for label in SCENES})
+        self.study = self.convergence_study(quick, {i: {"integrator": i} for i in INTEGRATORS}, BASELINE,
+                                            {"integrator": "volpathmis"})
+        return self.study.sweeps(self.scene_paths(), {label: {"res": self.cfg(quick)["res"]} for label in SCENES})
 
     def analyse(self, ctx):
         analysis = Analysis([], ["scene", "config", "spp", "render_time_s", "relmse"], [])

@@ -13,7 +13,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from iris_experiments import tools  # noqa: E402
-from iris_experiments.convergence import ConvergenceStudy, mean_relmse_at_spp  # noqa: E402
+from iris_experiments.convergence import mean_relmse_at_spp  # noqa: E402
 from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
 from iris_experiments.report import fmt, markdown_table  # noqa: E402
 from iris_experiments.scenes import SceneSpec  # noqa: E402
@@ -44,18 +44,14 @@ class SamplerEfficiency(ConvergenceExperiment):
     FULL, QUICK = FULL, QUICK
 
     def sweeps(self, quick, args):
-        c = self.cfg(quick)
-        conv = c["convergence"]
         render = tools.build_dir(args.build_dir) / "render"
         unavailable = {} if tools.render_supports(render, "--sampler") else {
             s: "render has no --sampler option" for s in SAMPLERS if s != BASELINE}
         # The reference: Sobol points (the lowest error per sample here), spectral mode with the
         # renderer's default 4 wavelengths per path, like every test render.
-        self.study = ConvergenceStudy({s: {"sampler": s} for s in SAMPLERS}, BASELINE, {"sampler": "sobol"},
-                                      conv["spp_levels"], conv["seeds"], c["ref_spp"],
-                                      [1000 + i for i in range(c["ref_seeds"])], time_limit=conv["time_limit"],
-                                      unavailable=unavailable)
-        per_scene = {label: {"res": c["res"]} for label in SCENES}
+        self.study = self.convergence_study(quick, {s: {"sampler": s} for s in SAMPLERS}, BASELINE, {"sampler": "sobol"},
+                                            unavailable=unavailable)
+        per_scene = {label: {"res": self.cfg(quick)["res"]} for label in SCENES}
         return self.study.sweeps(self.scene_paths(), per_scene)
 
     def analyse(self, ctx):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import collect, html_report, inprocess, report, runner, scenes, slurm, sweep, tools
+from .convergence import ConvergenceStudy
 from .errors import ExperimentError
 
 
@@ -91,6 +92,15 @@ class ConvergenceExperiment(Experiment):
 
     def cfg(self, quick):
         return self.QUICK if quick else self.FULL
+
+    def convergence_study(self, quick, configs: dict, baseline: str, reference: dict, **kw):
+        """The ConvergenceStudy of this experiment's FULL or QUICK definition: its "convergence" block
+        gives the sample counts, seeds and time limit, "ref_spp" and "ref_seeds" the reference (seeds
+        1000, 1001, ...); `kw` goes to ConvergenceStudy (e.g. unavailable)."""
+        c = self.cfg(quick)
+        conv = c["convergence"]
+        return ConvergenceStudy(configs, baseline, reference, conv["spp_levels"], conv["seeds"], c["ref_spp"],
+                                [1000 + i for i in range(c["ref_seeds"])], time_limit=conv["time_limit"], **kw)
 
     def settings(self, quick):
         c = self.cfg(quick)
