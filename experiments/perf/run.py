@@ -490,12 +490,33 @@ def t7_scaling_memory(ctx):
         c1.append(a.cpu)
         c2.append(b.cpu)
     sp = median(t1) / median(t2)
+    pair = process_pair_scaling(ctx, scene, spp, reps)
     ctx.m["scaling"] = {"scene": "scenes/default.xml", "res": 192, "spp": spp, "reps": reps,
                         "render_time_1thread": t1, "render_time_2threads": t2, "cpu_1thread": c1, "cpu_2threads": c2,
-                        "speedup_median": sp}
+                        "speedup_median": sp, "process_pair": pair}
     ctx.row("7", f"Scaling: default scene, render_time_s(1 thread) ÷ render_time_s(2 threads), median of {reps}",
             f"{sp:.2f}× (per run: {', '.join(f'{a / b:.2f}' for a, b in zip(t1, t2))}; CPU 2T/1T {median(c2) / median(c1):.2f})",
-            "≥ 1.8×", sp >= 1.8, f"{sp / 1.8:.2f}× the target" if sp < 1.8 else f"{100 * (sp / 1.8 - 1):.0f} % above")
+            "≥ 1.9×", sp >= 1.9, f"{sp / 1.9:.2f}× the target" if sp < 1.9 else f"{100 * (sp / 1.9 - 1):.0f} % above")
+    ctx.row("7", "Scaling model: the machine's own limit, two independent 1-thread renders at once (no shared "
+            f"film, tiles or pool): 2 × time alone ÷ time as a pair, median of {reps}",
+            f"{pair['speedup_median']:.2f}×; iris's threads reach {sp / pair['speedup_median']:.2f} of it", "reported", None, "")
+
+
+def process_pair_scaling(ctx, scene, spp, reps):
+    """The machine's scaling with nothing shared: one 1-thread render alone, then two started together
+    (two processes); 2 · t_alone / mean(t_pair) per repetition. What iris's 2 threads lose below
+    this is the render loop's shared work (pass barriers, film, allocation); what this loses below 2
+    is the machine's (shared caches and memory bandwidth, clock boost, the hypervisor)."""
+    ratios = []
+    for _ in range(reps):
+        _, alone = ctx.render(scene, spp=spp, threads=1, defines=["res=192"])
+        cmds = [ctx.render_cmd(scene, spp=spp, threads=1, defines=["res=192"], out_name=f"pair{i}.exr") for i in (0, 1)]
+        procs = [subprocess.Popen(c, env=ctx.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) for c, _ in cmds]
+        if any(p.wait() != 0 for p in procs):
+            raise RuntimeError("process pair: a render failed")
+        both = [float(exr_meta(path)["iris.render_time_s"]) for _, path in cmds]
+        ratios.append(2 * float(alone["iris.render_time_s"]) / (sum(both) / 2))
+    return {"per_run": ratios, "speedup_median": median(ratios)}
 
     def tris(ply):
         with open(ply, "rb") as f:
@@ -775,17 +796,22 @@ def profile_comment(ctx, name, p):
 
 def scaling_text(ctx):
     sc = ctx.m.get("scaling")
-    if not sc or sc["speedup_median"] >= 1.8:
+    if not sc or sc["speedup_median"] >= 1.9:
         return ""
     c = median(sc["cpu_2threads"]) / median(sc["cpu_1thread"])
     la = max(l["load1"] for l in ctx.loads)
-    return ("## Why the scaling target is missed here\n\n"
-            f"The 2-thread run used {c:.2f}× the CPU time of the 1-thread run (so threading adds little work), "
-            f"but the 1-minute load average was up to {la:.1f} on {os.cpu_count()} CPUs: the second thread mostly "
-            "waited for a core that other engineers' builds were using. The speed-up measured here is a property "
-            "of the shared machine at that moment, not of the renderer; re-run `run.py --only 7` on an idle "
-            "machine to measure it. No profile is shown for it (a profile cannot show time spent runnable but "
-            "not scheduled).\n")
+    pair = sc["process_pair"]["speedup_median"]
+    text = ("## Why the scaling target is missed here\n\n"
+            f"Model: two independent 1-thread renders run at once reach {pair:.2f}× (nothing of iris is shared "
+            "between them: this is the machine's limit, from shared caches, memory bandwidth, clock boost and the "
+            f"hypervisor), and iris's two threads reach {sc['speedup_median']:.2f}×, {sc['speedup_median'] / pair:.2f} "
+            "of that limit; the rest is the render loop's shared work (a barrier after every pass of one sample "
+            "per pixel, the film, the thread pool). The 2-thread run used "
+            f"{c:.2f}× the CPU time of the 1-thread run. ")
+    if la > 0.75 * os.cpu_count():
+        text += (f"The 1-minute load average was up to {la:.1f} on {os.cpu_count()} CPUs: other work was competing "
+                 "for the cores, so re-run `run.py --only 7` on an idle machine. ")
+    return text + "\n"
 
 
 def wins_text(ctx):
