@@ -285,7 +285,8 @@ def normal_mapped(b: Builder):
             "rotation": [0, 0.7071068, 0, 0.7071068], "name": "tangent"})  # 90° about y: the tangent turns to +x
     b.node({"mesh": b.mesh(quad(1.0), mapped), "name": "computed"})
     b.node({"mesh": b.mesh(quad(1.0), flat), "translation": [2.2, 0, 0], "name": "scale0"})
-    b.camera([0, 6, 0.01], yfov=1.0, aspect=2.0)
+    cam = b.camera([0, 6, 0], yfov=0.8, aspect=2.5)
+    b.doc["nodes"][cam]["rotation"] = [-0.7071068, 0, 0, 0.7071068]  # −90° about x: looking down −y
     b.light({"type": "directional", "intensity": 2}, {"rotation": [-0.3826834, 0, 0, 0.9238795]})
 
 
