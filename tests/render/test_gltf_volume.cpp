@@ -92,6 +92,30 @@ TEST(GltfVolume, SpectralModeUpsamplesAGreyAttenuationExactly) {
     EXPECT_NEAR(m.mean, slabTransmission(0.5, kDistance, kThickness), 4 * m.stderr_ + 2e-3) << "± " << m.stderr_;
 }
 
+TEST(GltfVolume, InstancedSlabsEachBoundTheirMedium) {
+    // The slab's mesh used by a second node 0.6 behind the first: one shape group, two instances,
+    // the medium in the group's shape. Two slabs in series with the light reflected between them:
+    // T² / (1 − R_s²), R_s = R + (1 − R)² R τ² / (1 − R² τ²).
+    // A node inserted first (so every node index moves by one) and the scene listing all four.
+    std::string json = slabWith("\"nodes\": [\n  {", "\"nodes\": [\n  {\"mesh\": 0, \"translation\": [0, 0, -0.6]}, {");
+    const size_t list = json.find("0,\n    1,\n    2\n   ]");
+    ASSERT_NE(list, std::string::npos);
+    json.replace(list, std::string("0,\n    1,\n    2\n   ]").size(), "0, 1, 2, 3]");
+    const SceneDescription two = load(json, 24);
+    ASSERT_EQ(two.instances.size(), 2u);
+    ASSERT_EQ(two.instances[0].group->shapes.size(), 1u);
+    EXPECT_TRUE(two.instances[0].group->shapes[0].interior);
+    const Film film = render(two, true, 256, 13);
+    const double R = 0.04;
+    for (int c = 0; c < 3; ++c) {
+        const double tau = std::pow(kColor[c], kThickness / kDistance);
+        const double T = slabTransmission(kColor[c], kDistance, kThickness);
+        const double Rs = R + (1 - R) * (1 - R) * R * tau * tau / (1 - R * R * tau * tau);
+        const test::ImageMean m = test::imageMean(film, c);
+        EXPECT_NEAR(m.mean, T * T / (1 - Rs * Rs), 4 * m.stderr_ + 1e-3) << "channel " << c << " ± " << m.stderr_;
+    }
+}
+
 TEST(GltfVolume, TheSlabBoundsAMediumRenderedByVolpath) {
     const SceneDescription d = loadSceneFile(asset("volume_slab.gltf"));
     ASSERT_EQ(d.shapes.size(), 2u);
@@ -146,13 +170,27 @@ TEST(GltfVolume, BadParametersNameTheFileAndJsonPath) {
     }
 }
 
-TEST(GltfVolume, XmlSceneWithAVolumeNeedsAVolumetricIntegrator) {
+TEST(GltfVolume, XmlSceneNeedsVolpathAndScalesTheAttenuationDistance) {
     const std::string shape = R"(<shape type="gltf"><string name="filename" value=")" + asset("volume_slab.gltf") + R"("/></shape>)";
     const std::string e = test::sceneError(shape);
     EXPECT_TRUE(test::contains(e, "volpath")) << e;
     const SceneDescription s =
         loadSceneFromString(R"(<scene version="3.0.0"><integrator type="volpath"/>)" + shape + "</scene>", sourceDir());
-    EXPECT_TRUE(s.shapes[0].interior);
+    ASSERT_TRUE(s.shapes[0].interior);
+    // σ_a = −ln(c)/d in glTF units; placed at twice the size, the distance doubles in scene units.
+    const std::string scaled = R"(<shape type="gltf"><string name="filename" value=")" + asset("volume_slab.gltf") +
+                               R"("/><transform name="to_world"><scale value="2"/></transform></shape>)";
+    const SceneDescription big =
+        loadSceneFromString(R"(<scene version="3.0.0"><integrator type="volpath"/>)" + scaled + "</scene>", sourceDir());
+    ASSERT_TRUE(big.shapes[0].interior);
+    const SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());
+    const MediumCoefficients one = s.shapes[0].interior->coefficients(vec3(0.0f), wl);
+    const MediumCoefficients two = big.shapes[0].interior->coefficients(vec3(0.0f), wl);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(one.sigmaT[c], -std::log(kColor[c]) / kDistance, 1e-5) << c;
+        EXPECT_NEAR(two.sigmaT[c], -std::log(kColor[c]) / (2 * kDistance), 1e-5) << c;
+        EXPECT_EQ(one.sigmaS[c], 0.0f) << "purely absorbing";
+    }
 }
 
 }  // namespace
