@@ -54,7 +54,7 @@ TangentFrame tangentFrameAt(const ShadingPoint& sp) {
 
 vec3 mappedNormal(const ShadingPoint& sp, const Texture& map, float scale) {
     const vec3 c = vec3(map.rgba(sp.tex));
-    // §5.22 normalTextureInfo.scale: scaledNormal = normalize((sample · 2 − 1) · (scale, scale, 1)).
+    // material.normalTextureInfo.scale (schema): scaledNormal = normalize((sample · 2 − 1) · (scale, scale, 1)).
     const vec3 local = (c * 2.0f - 1.0f) * vec3(scale, scale, 1.0f);
     const TangentFrame f = tangentFrameAt(sp);
     const vec3 n = local.x * f.t + local.y * f.b + local.z * f.n;

@@ -1,6 +1,6 @@
 // glTF 2.0 normal textures (§3.9.3 "Additional Textures", material.normalTextureInfo): a
 // tangent-space normal map perturbs the shading normal of the glTF material it wraps.
-//   scaledNormal = normalize((sample · 2 − 1) · (scale, scale, 1))       (§5.22 normalTextureInfo.scale)
+//   scaledNormal = normalize((sample · 2 − 1) · (scale, scale, 1))       (schema material.normalTextureInfo, scale)
 //   n' = normalize(x T + y B + z N),  B = (N × T) · w                   (§3.7.2.1 TANGENT: xyz, w = handedness)
 // T is the TANGENT attribute (mesh attribute kTangentAttribute, already in the shape's space) or,
 // without it, ∂p/∂u of the hit triangle from its UVs (the spec asks for MikkTSpace's per-vertex
