@@ -13,8 +13,9 @@
 // h = −normalize(η_i v + η_o l), its Fresnel by the README's three cases (the dense side's angle,
 // total internal reflection F = 1), and the back side is the same BSDF mirrored with the relative
 // index 1/ior (inside the volume), whatever doubleSided says. The radiance BTDF has the viewer's
-// index as η_o (Walter's convention; the README's formula, written with V on the incident side, is
-// its adjoint, which Importance mode uses). α = roughness². The base weight of a film is exact per
+// index as η_o (Walter's convention; the README's formula, written with V on the incident side, has
+// an extra η², which Importance mode applies, keeping the viewer-side Fresnel factor: not the exact
+// adjoint where the two sides' Fresnel cases differ). α = roughness². The base weight of a film is exact per
 // lane (1 − F) in the Exact reading and the README's max₃ in the Khr reading. Alpha coverage (mask, blend) is a
 // pass-through lobe of weight 1 − opacity. Seen from behind (wo.z < 0), a double-sided material
 // is the same BSDF mirrored through the surface; a single-sided one is culled (§3.9.5): a
