@@ -71,6 +71,7 @@ private:
         r.edgeTint = p_.edgeTint;
         r.mode = p_.rgbMode;
         r.doubleSided = p_.doubleSided;
+        r.volume = p_.volume;
         r.opacity = opacity(q, vc.a);
         return r;
     }
@@ -113,6 +114,9 @@ std::shared_ptr<Material> createPbr(const Properties& pr) {
     if (!(p.thicknessMax >= 0)) failAt(pr.locationOf("iridescence_thickness"), "gltf_pbr: iridescence_thickness must be >= 0 nm");
     p.edgeTint = pr.has("edge_tint") ? unit("edge_tint", 1.0f) : -1.0f;
     p.doubleSided = pr.getBool("double_sided", true);
+    const float thickness = pr.getFloat("thickness", 0.0f);  // KHR_materials_volume thicknessFactor: > 0 is a volume boundary
+    if (!(thickness >= 0)) failAt(pr.locationOf("thickness"), "gltf_pbr: thickness must be >= 0, got ", thickness);
+    p.volume = thickness > 0 && p.transmission.factor > 0;  // as the loader: a volume needs transmission
     p.rgbMode = withLocation(pr.locationOf("rgb_mode"), [&] { return parseThinFilmRGBMode(pr.getString("rgb_mode", "point")); });
     return std::make_shared<PbrMaterial>(std::move(p));
 }

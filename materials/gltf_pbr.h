@@ -1,6 +1,6 @@
 // The glTF 2.0 material (glTF 2.0 §3.9 and Appendix B "BRDF Implementation") with the Khronos
-// extensions KHR_materials_ior, _specular, _transmission, _clearcoat, _sheen, _iridescence and
-// _emissive_strength (emission is the shape's, render/loader/gltf_*). The glTF loader builds it
+// extensions KHR_materials_ior, _specular, _transmission, _volume (the boundary; its medium is the
+// shape's), _clearcoat, _sheen, _iridescence and _emissive_strength (emission is the shape's, render/loader/gltf_*). The glTF loader builds it
 // from a file's material; the plugin "gltf_pbr" builds it from scene-file parameters (constants
 // only), so BRDF-level experiments and tests reach it through iris.Material. docs/gltf.md.
 #pragma once
@@ -66,6 +66,11 @@ struct PbrParams {
     /// glTF's doubleSided (§3.9.5): lit from both sides. A single-sided material is culled from
     /// behind, as rasterizers cull back faces: light passes through it unchanged.
     bool doubleSided = false;
+    /// KHR_materials_volume with thicknessFactor > 0: the surface bounds a volume. Transmission
+    /// refracts with `ior` (the extension's refractive microfacet BTDF) instead of passing
+    /// thin-walled, and the back side is the interface seen from inside (doubleSided has no
+    /// effect). The medium inside is the shape's (render/loader/gltf_volume.h).
+    bool volume = false;
 };
 
 /// The material of `params` (no validation: the loader and the plugin check their inputs).

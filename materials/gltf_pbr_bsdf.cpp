@@ -20,6 +20,27 @@ SampledSpectrum schlick(const SampledSpectrum& f0, float w) { return f0 + (Sampl
 /// A direction below the surface mirrored above it (the thin-walled BTDF's reflection partner).
 vec3 mirrored(const vec3& w) { return vec3(w.x, w.y, -w.z); }
 
+/// The refraction pair (wo above, wi below) of a volume boundary at its generalised half vector
+/// h ∝ wo + eta·wi, turned to +z (Walter et al. 2007 eq. 16; the README's H_TR = −normalize(η_i V +
+/// η_o L)), eta = η beyond the surface / η on the viewer's side.
+struct Refraction {
+    vec3 h;
+    float dotO, dotI;
+};
+std::optional<Refraction> refractionHalf(const vec3& wo, const vec3& wi, float eta) {
+    vec3 h = wo + wi * eta;
+    const float len = glm::length(h);
+    if (!(len > 0)) return std::nullopt;
+    h /= len;
+    if (h.z < 0) h = -h;
+    const Refraction r{h, glm::dot(wo, h), glm::dot(wi, h)};
+    // Each direction must see the front of the microfacet on its own side.
+    if (!(r.dotO > 0 && r.dotI < 0 && h.z > 0)) return std::nullopt;
+    return r;
+}
+
+float sqr(float x) { return x * x; }
+
 }  // namespace
 
 PbrBSDF::PbrBSDF(const PbrPoint& p)
@@ -44,7 +65,7 @@ PbrBSDF::PbrBSDF(const PbrPoint& p)
 uint32_t PbrBSDF::flags() const {
     uint32_t f = kBSDFReflection | kBSDFGlossy | kBSDFDiffuse;
     if (p_.transmission > 0 && p_.metallic < 1) f |= kBSDFTransmission;
-    if (p_.opacity < 1 || !p_.doubleSided) f |= kNullLobe;
+    if (p_.opacity < 1 || !mirrorsBack()) f |= kNullLobe;
     return f;
 }
 
@@ -54,9 +75,14 @@ SampledSpectrum PbrBSDF::metalFresnel(float vh) const {
     return F;
 }
 
-SampledSpectrum PbrBSDF::dielectricFresnel(float vh, SampledSpectrum& baseWeight) const {
+SampledSpectrum PbrBSDF::dielectricFresnel(float vh, float w, SampledSpectrum& baseWeight) const {
     const int n = p_.base.size();
-    const float w = schlickWeight(vh);
+    if (w < 0) {
+        // KHR_materials_volume, total internal reflection: F = 1, its F90 not scaled by
+        // KHR_materials_specular (README "Interaction with other extensions"); nothing enters the base.
+        baseWeight = SampledSpectrum(n);
+        return SampledSpectrum(n, 1.0f);
+    }
     const float f0 = (p_.ior - 1.0f) / (p_.ior + 1.0f) * ((p_.ior - 1.0f) / (p_.ior + 1.0f));
     SampledSpectrum f0c = p_.specularColor * f0;
     for (int i = 0; i < n; ++i) f0c[i] = std::min(f0c[i], 1.0f);
@@ -78,23 +104,42 @@ SampledSpectrum PbrBSDF::dielectricFresnel(float vh, SampledSpectrum& baseWeight
     return F;
 }
 
-SampledSpectrum PbrBSDF::surface(const vec3& wo, const vec3& wi) const {
+SampledSpectrum PbrBSDF::surface(const vec3& wo, const vec3& wi, float eta, TransportMode mode) const {
     const int n = p_.base.size();
     const bool transmit = wi.z < 0;
     if (transmit && !(p_.transmission > 0 && p_.metallic < 1)) return SampledSpectrum(n);
-    const vec3 l = transmit ? mirrored(wi) : wi;
-    const vec3 h = glm::normalize(l + wo);
-    const float vh = std::abs(glm::dot(wo, h));
-    const float spec = specularBrdf(spec_.alphaX(), l, wo);
-    SampledSpectrum baseWeight(n);
-    const SampledSpectrum Fd = dielectricFresnel(vh, baseWeight);
     SampledSpectrum f(n);
-    if (!transmit) {
-        const SampledSpectrum diffuse = p_.base * ((1.0f - p_.transmission) * kInvPi);
-        f = (baseWeight * diffuse + Fd * spec) * (1.0f - p_.metallic);
-        if (p_.metallic > 0) f += metalFresnel(vh) * (spec * p_.metallic);
+    float vh;  // |v·h| of the clearcoat's Fresnel
+    if (transmit && p_.volume) {
+        const std::optional<Refraction> r = refractionHalf(wo, wi, eta);
+        if (!r) return f;
+        const float w = volumeSchlickWeight(r->dotO, eta);
+        if (w < 0) return f;  // total internal reflection: nothing is transmitted
+        SampledSpectrum baseWeight(n);
+        dielectricFresnel(r->dotO, w, baseWeight);
+        // KHR_materials_volume "Implementation", Walter et al. 2007 eq. 21 with η_o (viewer) = 1,
+        // η_i = eta: |h·l||h·v| / (|n·l||n·v|) · G D / ((v·h) + eta (l·h))², G = 4 V |n·l||n·v|.
+        float btdf = 4.0f * ggxV(spec_.alphaX(), wi.z, wo.z) * ggxD(spec_.alphaX(), r->h) * std::abs(r->dotO * r->dotI) /
+                     sqr(r->dotO + eta * r->dotI);
+        if (mode == TransportMode::Importance) btdf *= eta * eta;  // the adjoint: η_i² for η_o²
+        f = baseWeight * p_.base * (p_.transmission * btdf * (1.0f - p_.metallic));
+        vh = r->dotO;
     } else {
-        f = baseWeight * p_.base * (p_.transmission * spec * (1.0f - p_.metallic));  // thin-walled specular_btdf
+        const vec3 l = transmit ? mirrored(wi) : wi;
+        const vec3 h = glm::normalize(l + wo);
+        vh = std::abs(glm::dot(wo, h));
+        const float spec = specularBrdf(spec_.alphaX(), l, wo);
+        // A volume boundary's reflection takes the Fresnel of the dense side (README cases 1–3).
+        const float w = p_.volume ? volumeSchlickWeight(vh, eta) : schlickWeight(vh);
+        SampledSpectrum baseWeight(n);
+        const SampledSpectrum Fd = dielectricFresnel(vh, w, baseWeight);
+        if (!transmit) {
+            const SampledSpectrum diffuse = p_.base * ((1.0f - p_.transmission) * kInvPi);
+            f = (baseWeight * diffuse + Fd * spec) * (1.0f - p_.metallic);
+            if (p_.metallic > 0) f += metalFresnel(vh) * (spec * p_.metallic);
+        } else {
+            f = baseWeight * p_.base * (p_.transmission * spec * (1.0f - p_.metallic));  // thin-walled specular_btdf
+        }
     }
     if (p_.sheenMax > 0) {
         // KHR_materials_sheen's albedo scaling, clamped at 0: E exceeds 1 at grazing angles of the
@@ -102,28 +147,34 @@ SampledSpectrum PbrBSDF::surface(const vec3& wo, const vec3& wi) const {
         const float scale = std::max(0.0f, std::min(1.0f - p_.sheenMax * sheenAlbedo(wo.z, p_.sheenRoughness),
                                                     1.0f - p_.sheenMax * sheenAlbedo(std::abs(wi.z), p_.sheenRoughness)));
         f = f * scale;
-        if (!transmit) f += p_.sheenColor * sheenBrdf(p_.sheenAlpha, l, wo);
+        if (!transmit) f += p_.sheenColor * sheenBrdf(p_.sheenAlpha, wi, wo);
     }
     if (p_.clearcoat > 0) {
         const float Fc = 0.04f + 0.96f * schlickWeight(vh);
         f = f * (1.0f - p_.clearcoat * Fc);
-        if (!transmit) f += SampledSpectrum(n, p_.clearcoat * Fc * specularBrdf(coat_.alphaX(), l, wo));
+        if (!transmit) f += SampledSpectrum(n, p_.clearcoat * Fc * specularBrdf(coat_.alphaX(), wi, wo));
     }
     return f;
 }
 
-SampledSpectrum PbrBSDF::evalFront(const vec3& wo, const vec3& wi) const {
+SampledSpectrum PbrBSDF::evalFront(const vec3& wo, const vec3& wi, float eta, TransportMode mode) const {
     if (wo.z <= 0 || wi.z == 0) return SampledSpectrum(p_.base.size());
-    return surface(wo, wi) * p_.opacity;
+    return surface(wo, wi, eta, mode) * p_.opacity;
 }
 
-SampledSpectrum PbrBSDF::eval(const vec3& wo, const vec3& wi, TransportMode) const {
-    if (wo.z < 0 && p_.doubleSided) return evalFront(-wo, -wi);  // mirrored: −w has the same angle to −n
-    return evalFront(wo, wi);
+SampledSpectrum PbrBSDF::eval(const vec3& wo, const vec3& wi, TransportMode mode) const {
+    if (wo.z < 0 && mirrorsBack()) return evalFront(-wo, -wi, backEta(), mode);  // mirrored: −w has the same angle to −n
+    return evalFront(wo, wi, p_.ior, mode);
 }
 
-float PbrBSDF::surfacePdf(const vec3& wo, const vec3& wi) const {
+float PbrBSDF::surfacePdf(const vec3& wo, const vec3& wi, float eta) const {
     const bool transmit = wi.z < 0;
+    if (transmit && p_.volume) {
+        const std::optional<Refraction> r = refractionHalf(wo, wi, eta);
+        if (!r) return 0.0f;
+        // Walter et al. 2007 eq. 17: |∂ω_h/∂ω_i| = eta² |l·h| / ((v·h) + eta (l·h))².
+        return lobeProb_[kTransmission] * spec_.pdf(wo, r->h) * eta * eta * std::abs(r->dotI) / sqr(r->dotO + eta * r->dotI);
+    }
     const vec3 l = transmit ? mirrored(wi) : wi;
     const vec3 h = glm::normalize(l + wo);
     const float jac = 1.0f / (4.0f * std::abs(glm::dot(wo, h)));
@@ -132,14 +183,14 @@ float PbrBSDF::surfacePdf(const vec3& wo, const vec3& wi) const {
            lobeProb_[kCoat] * coat_.pdf(wo, h) * jac;
 }
 
-float PbrBSDF::pdfFront(const vec3& wo, const vec3& wi) const {
+float PbrBSDF::pdfFront(const vec3& wo, const vec3& wi, float eta) const {
     if (wo.z <= 0 || wi.z == 0) return 0.0f;
-    return p_.opacity * surfacePdf(wo, wi);
+    return p_.opacity * surfacePdf(wo, wi, eta);
 }
 
 float PbrBSDF::pdf(const vec3& wo, const vec3& wi, TransportMode) const {
-    if (wo.z < 0 && p_.doubleSided) return pdfFront(-wo, -wi);
-    return pdfFront(wo, wi);
+    if (wo.z < 0 && mirrorsBack()) return pdfFront(-wo, -wi, backEta());
+    return pdfFront(wo, wi, p_.ior);
 }
 
 std::optional<BSDFSample> PbrBSDF::passThrough(const vec3& wo, float weight, float prob) const {
@@ -153,14 +204,14 @@ std::optional<BSDFSample> PbrBSDF::passThrough(const vec3& wo, float weight, flo
 
 std::optional<BSDFSample> PbrBSDF::sample(const vec3& wo, float uc, const vec2& u, TransportMode mode) const {
     if (wo.z == 0) return std::nullopt;
-    if (wo.z < 0 && !p_.doubleSided) return passThrough(wo, 1.0f, 1.0f);  // culled back face
-    if (wo.z > 0) return sampleFront(wo, uc, u, mode);
-    std::optional<BSDFSample> s = sampleFront(-wo, uc, u, mode);
+    if (wo.z < 0 && !mirrorsBack()) return passThrough(wo, 1.0f, 1.0f);  // culled back face
+    if (wo.z > 0) return sampleFront(wo, uc, u, p_.ior, mode);
+    std::optional<BSDFSample> s = sampleFront(-wo, uc, u, backEta(), mode);
     if (s) s->wi = -s->wi;
     return s;
 }
 
-std::optional<BSDFSample> PbrBSDF::sampleFront(const vec3& wo, float uc, const vec2& u, TransportMode mode) const {
+std::optional<BSDFSample> PbrBSDF::sampleFront(const vec3& wo, float uc, const vec2& u, float eta, TransportMode mode) const {
     if (uc >= p_.opacity) return passThrough(wo, 1.0f - p_.opacity, 1.0f - p_.opacity);  // alpha coverage
     uc /= p_.opacity;
     int lobe = 0;
@@ -171,11 +222,32 @@ std::optional<BSDFSample> PbrBSDF::sampleFront(const vec3& wo, float uc, const v
         case kDiffuse:
         case kSheen: wi = sampleCosineHemisphere(u), flags = kBSDFReflection | kBSDFDiffuse; break;
         case kSpecular: wi = reflect(wo, spec_.sampleNormal(wo, u)); break;
-        case kTransmission: wi = mirrored(reflect(wo, spec_.sampleNormal(wo, u))), flags = kBSDFTransmission | kBSDFGlossy; break;
+        case kTransmission:
+            flags = kBSDFTransmission | kBSDFGlossy;
+            if (p_.volume) {
+                // Snell's law at the sampled microfacet h (Walter et al. 2007 eq. 40):
+                // wi = −wo/eta + ((wo·h)/eta − cosθt) h, sin²θt = (1 − (wo·h)²)/eta².
+                const vec3 h = spec_.sampleNormal(wo, u);
+                const float c = glm::dot(wo, h);
+                const float sin2t = (1.0f - c * c) / (eta * eta);
+                if (!(c > 0) || sin2t >= 1.0f) return std::nullopt;  // back-facing microfacet, or total internal reflection
+                wi = glm::normalize(-wo / eta + h * (c / eta - std::sqrt(1.0f - sin2t)));
+            } else {
+                wi = mirrored(reflect(wo, spec_.sampleNormal(wo, u)));
+            }
+            break;
         default: wi = reflect(wo, coat_.sampleNormal(wo, u)); break;
     }
     if ((lobe == kTransmission) != (wi.z < 0) || wi.z == 0) return std::nullopt;
-    return sampleFromEval(wo, wi, flags, mode);
+    // The front side's pdf and value (for the back side, wo is already mirrored and eta inverted).
+    BSDFSample s;
+    s.wi = wi;
+    s.pdf = pdfFront(wo, wi, eta);
+    if (!(s.pdf > 0)) return std::nullopt;
+    s.f = evalFront(wo, wi, eta, mode);
+    s.flags = flags;
+    if (lobe == kTransmission && p_.volume) s.eta = eta;
+    return s;
 }
 
 }  // namespace iris::gltf

@@ -37,6 +37,13 @@ float schlickWeight(float vDotH) {
     return m2 * m2 * m;  // Appendix B.3.4: F = F0 + (1 − F0)(1 − |V·H|)⁵
 }
 
+float volumeSchlickWeight(float vDotH, float eta) {
+    if (eta >= 1.0f) return schlickWeight(vDotH);  // case 1: F⁺ = f0 + (1 − f0)(1 − |V·H|)⁵
+    const float sin2o = (1.0f - vDotH * vDotH) / (eta * eta);  // case 2: sin²θo = (ηi/ηo)² (1 − (V·H)²)
+    if (sin2o >= 1.0f) return -1.0f;  // case 3: total internal reflection, F = 1
+    return schlickWeight(std::sqrt(1.0f - sin2o));
+}
+
 float charlieD(float alpha, float cosH) { return cloth::charlieD(std::max(alpha, kMinSheenAlpha), cosH); }
 
 namespace {

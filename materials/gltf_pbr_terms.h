@@ -22,6 +22,12 @@ float specularBrdf(float alpha, const vec3& l, const vec3& v);
 /// Schlick's (1 − |v·h|)⁵ weight (Appendix B.3.4).
 float schlickWeight(float vDotH);
 
+/// KHR_materials_volume "Implementation": the Schlick weight (1 − |cos θ|)⁵ at the dense side of a
+/// volume boundary, where eta = η_o / η_i is the index beyond the surface over the viewer's:
+/// eta ≥ 1, θ is the viewer's angle to h (case 1); eta < 1, the transmitted angle,
+/// sin²θ_o = (1 − (v·h)²) / eta² (case 2); −1 for total internal reflection, F = 1 (case 3).
+float volumeSchlickWeight(float vDotH, float eta);
+
 /// "Charlie" sheen distribution D = (2 + 1/α) sin(θh)^(1/α) / (2π) (KHR_materials_sheen; Estevez &
 /// Kulla 2017 eq. 2). α = sheenRoughness², clamped below at kMinSheenAlpha.
 float charlieD(float alpha, float cosH);

@@ -72,7 +72,7 @@ void checkExtensions(Document& doc) {
 const std::vector<std::string>& supportedExtensions() {
     static const std::vector<std::string> names = {
         "KHR_materials_ior",        "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_clearcoat",
-        "KHR_materials_sheen",      "KHR_materials_iridescence", "KHR_materials_emissive_strength",
+        "KHR_materials_sheen",      "KHR_materials_iridescence", "KHR_materials_emissive_strength", "KHR_materials_volume",
         "KHR_lights_punctual",      "KHR_texture_transform"};
     return names;
 }

@@ -1,6 +1,7 @@
 #include "render/loader/gltf_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -28,30 +29,54 @@ struct Primitive {
     const gltf::ShapeMaterial* material;
 };
 
+void checkClosed(Document& doc, const Primitive& p);
+
 /// Every triangle primitive of mesh `m`, read once.
 std::vector<Primitive> readMesh(Document& doc, gltf::MaterialCache& materials, int m) {
     std::vector<Primitive> out;
     const tinygltf::Mesh& mesh = doc.model.meshes[size_t(m)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
-        if (std::optional<TriangleMesh> t = gltf::readPrimitive(doc, m, int(p)))
+        if (std::optional<TriangleMesh> t = gltf::readPrimitive(doc, m, int(p))) {
             out.push_back({std::move(*t), &materials.material(mesh.primitives[p].material)});
+            checkClosed(doc, out.back());
+        }
     return out;
 }
 
 ShapeDescription shapeOf(const Primitive& p, const mat4& toWorld, bool placed) {
     ShapeDescription s;
     auto mesh = std::make_shared<TriangleMesh>(p.mesh);
-    if (placed) mesh->transform(toWorld);
+    if (placed) {
+        mesh->transform(toWorld);
+        gltf::transformTangents(*mesh, toWorld);
+    }
     s.name = mesh->name;
     s.mesh = std::move(mesh);
     s.material = p.material->material;
     s.emission = p.material->emission;
     s.emissionTexture = p.material->emissionTexture;
+    s.interior = p.material->interior;
     return s;
 }
 
-bool emits(const std::vector<Primitive>& prims) {
-    return std::any_of(prims.begin(), prims.end(), [](const Primitive& p) { return p.material->emission || p.material->emissionTexture; });
+/// Meshes that are written out rather than instanced: a shape group holds no emitters, and the
+/// TANGENT attribute a normal map reads is placed with its mesh (an instance transforms only the
+/// hit's position, normals and ∂p/∂u, render/instance_transform.cpp).
+bool notInstanced(const std::vector<Primitive>& prims) {
+    return std::any_of(prims.begin(), prims.end(), [](const Primitive& p) {
+        return p.material->emission || p.material->emissionTexture ||
+               (p.material->normalMapped && p.mesh.findAttribute(gltf::kTangentAttribute));
+    });
+}
+
+/// KHR_materials_volume: "the mesh ... defines the boundaries of an homogeneous medium and
+/// therefore must be manifold". An open one is rendered (rays may leave the medium through a
+/// hole without crossing a boundary) with a warning.
+void checkClosed(Document& doc, const Primitive& p) {
+    if (!p.material->interior) return;
+    if (const size_t open = openEdgeCount(p.mesh); open > 0)
+        doc.warnings.push_back(strCat(p.mesh.name, ": KHR_materials_volume needs a closed mesh, but ", open,
+                                      " edges belong to one triangle or to more than two"));
 }
 
 Properties plugin(const char* tag, const char* type, const Document& doc) { return Properties(tag, type, SourceLocation{doc.path, 0}); }
@@ -102,7 +127,10 @@ int nodeLight(const tinygltf::Node& n) {
 
 /// Shapes, instances and lights of the document into `scene`.
 void addContent(Document& doc, const mat4& toWorld, const std::string& rgbMode, SceneDescription& scene) {
-    gltf::MaterialCache materials(doc, rgbMode);
+    // One glTF unit in scene units (a volume's attenuationDistance): the cube root of to_world's volume scale.
+    const float lengthScale = std::cbrt(std::abs(glm::determinant(mat3(toWorld))));
+    if (!(lengthScale > 0) || !std::isfinite(lengthScale)) fail(doc.path, ": the transform placing the file is degenerate");
+    gltf::MaterialCache materials(doc, rgbMode, lengthScale);
     const std::vector<gltf::PlacedNode> nodes = gltf::placeNodes(doc);
     std::map<int, int> uses;
     for (const gltf::PlacedNode& n : nodes)
@@ -118,7 +146,7 @@ void addContent(Document& doc, const mat4& toWorld, const std::string& rgbMode, 
         auto it = meshes.find(node.mesh);
         if (it == meshes.end()) it = meshes.emplace(node.mesh, readMesh(doc, materials, node.mesh)).first;
         const std::vector<Primitive>& prims = it->second;
-        if (uses[node.mesh] < 2 || emits(prims)) {  // written out (a shape group holds no emitters)
+        if (uses[node.mesh] < 2 || notInstanced(prims)) {  // written out
             for (const Primitive& p : prims) scene.shapes.push_back(shapeOf(p, world, true));
             continue;
         }
@@ -237,7 +265,8 @@ SceneDescription buildScene(const std::string& path, const GltfOptions& options,
     addContent(doc, mat4(1.0f), options.rgbMode, scene);
     addCamera(doc, options, scene);
     addEnvironment(doc, options, scene);
-    scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", kDefaultIntegrator, {}));
+    // A KHR_materials_volume medium needs a volumetric integrator (the default one ignores media).
+    scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", scene.hasMedia() ? "volpath" : kDefaultIntegrator, {}));
     scene.spp = options.spp;
     for (const std::string& w : doc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     scene.memory = memory.take();

@@ -1,6 +1,12 @@
 #include "render/loader/gltf_material.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "materials/gltf_normal_map.h"
 #include "render/loader/gltf_images.h"
+#include "render/loader/gltf_volume.h"
 #include "spectral/rgb_spectrum_grid.h"
 #include "spectral/spectrum_factory.h"
 
@@ -12,6 +18,15 @@ double number(const tinygltf::Value& v, const char* key, double def) {
     if (!v.IsObject() || !v.Has(key)) return def;
     const tinygltf::Value& x = v.Get(key);
     return x.IsNumber() ? x.GetNumberAsDouble() : def;
+}
+
+/// An index or set number of a JSON object as an int: absent or NaN → def, otherwise clamped to
+/// [−1, INT_MAX] (a converted double out of int's range would be undefined behaviour), so that an
+/// absurd index still fails the range checks that name it.
+int integer(const tinygltf::Value& v, const char* key, int def) {
+    const double x = number(v, key, def);
+    if (std::isnan(x)) return def;
+    return int(std::clamp(x, -1.0, double(std::numeric_limits<int>::max())));
 }
 
 vec3 color(const tinygltf::Value& v, const char* key, const vec3& def) {
@@ -56,18 +71,24 @@ std::shared_ptr<const Bitmap> MaterialCache::image(int index, bool srgb, const s
     return it->second;
 }
 
-TexturePtr MaterialCache::texture(int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb, const std::string& path) {
-    if (index < 0) return nullptr;
+const tinygltf::Texture& MaterialCache::checkTexture(int index, int texCoord, const std::string& path) {
     if (size_t(index) >= doc_.model.textures.size()) failAtPath(doc_, path + "/index", "texture ", index, " does not exist");
     if (texCoord < 0 || texCoord > 1) failAtPath(doc_, path + "/texCoord", "only TEXCOORD_0 and TEXCOORD_1 are supported, got ", texCoord);
     const tinygltf::Texture& t = doc_.model.textures[size_t(index)];
     const std::string tpath = strCat("/textures/", index);
     if (t.source < 0) failAtPath(doc_, tpath + "/source", "the texture has no image");
     if (size_t(t.source) >= doc_.model.images.size()) failAtPath(doc_, tpath + "/source", "image ", t.source, " does not exist");
+    if (t.sampler >= 0 && size_t(t.sampler) >= doc_.model.samplers.size())
+        failAtPath(doc_, tpath + "/sampler", "sampler ", t.sampler, " does not exist");
+    return t;
+}
+
+TexturePtr MaterialCache::texture(int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb, const std::string& path) {
+    if (index < 0) return nullptr;
+    const tinygltf::Texture& t = checkTexture(index, texCoord, path);
     Bitmap::Filter filter = Bitmap::Filter::Bilinear;
     Bitmap::Wrap wrap = Bitmap::Wrap::Repeat;
     if (t.sampler >= 0) {
-        if (size_t(t.sampler) >= doc_.model.samplers.size()) failAtPath(doc_, tpath + "/sampler", "sampler ", t.sampler, " does not exist");
         const tinygltf::Sampler& s = doc_.model.samplers[size_t(t.sampler)];
         if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) filter = Bitmap::Filter::Nearest;
         // One wrap mode for both axes (Bitmap's): wrapS (§5.26 sampler).
@@ -84,7 +105,7 @@ TexturePtr MaterialCache::texture(int index, int texCoord, const tinygltf::Exten
         tf.offset = pair("offset", vec2(0.0f));
         tf.scale = pair("scale", vec2(1.0f));
         tf.rotation = float(number(v, "rotation", 0.0));
-        texCoord = int(number(v, "texCoord", texCoord));  // the extension may override the set
+        texCoord = integer(v, "texCoord", texCoord);  // the extension may override the set
         if (texCoord < 0 || texCoord > 1) failAtPath(doc_, path + "/extensions/KHR_texture_transform/texCoord", "only sets 0 and 1 are supported");
     }
     return std::make_shared<Texture>(image(t.source, srgb, strCat("/images/", t.source)), filter, wrap, texCoord, tf);
@@ -96,13 +117,13 @@ TexturePtr MaterialCache::texture(const tinygltf::TextureInfo& info, bool srgb, 
 
 TexturePtr MaterialCache::texture(const tinygltf::Value& ext, bool srgb, const std::string& path) {
     if (!ext.IsObject()) return nullptr;
-    const int index = int(number(ext, "index", -1));
+    const int index = integer(ext, "index", -1);
     tinygltf::ExtensionMap nested;
     if (ext.Has("extensions") && ext.Get("extensions").IsObject()) {
         const tinygltf::Value& e = ext.Get("extensions");
         for (const std::string& k : e.Keys()) nested[k] = e.Get(k);
     }
-    return texture(index, int(number(ext, "texCoord", 0)), nested, srgb, path);
+    return texture(index, integer(ext, "texCoord", 0), nested, srgb, path);
 }
 
 ShapeMaterial MaterialCache::build(int index) {
@@ -128,8 +149,9 @@ ShapeMaterial MaterialCache::build(int index) {
     p.alphaMode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
     p.alphaCutoff = float(m.alphaCutoff);
     out.doubleSided = p.doubleSided = m.doubleSided;
-    if (m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0)
-        doc_.warnings.push_back(strCat(doc_.path, ": ", path, ": normal and occlusion textures are not applied (docs/gltf.md)"));
+    // §3.9.3 occlusionTexture: checked, not applied. It darkens indirect light as a rasterizer
+    // approximates it; a path tracer integrates that light (and its occlusion) itself.
+    if (m.occlusionTexture.index >= 0) checkTexture(m.occlusionTexture.index, m.occlusionTexture.texCoord, path + "/occlusionTexture");
     const std::string ext = path + "/extensions/";
     if (const auto* e = extension(m, "KHR_materials_ior")) {
         p.ior = float(number(*e, "ior", 1.5));
@@ -166,7 +188,25 @@ ShapeMaterial MaterialCache::build(int index) {
         p.thicknessMax = float(number(*e, "iridescenceThicknessMaximum", 400.0));
         p.thicknessTexture = texture(e->Get("iridescenceThicknessTexture"), false, ext + "KHR_materials_iridescence/iridescenceThicknessTexture");
     }
+    if (const auto* e = extension(m, "KHR_materials_volume")) {
+        const std::string vpath = ext + "KHR_materials_volume";
+        const Volume v = readVolume(doc_, *e, vpath);
+        if (e->Has("thicknessTexture") && e->Get("thicknessTexture").IsObject()) {  // for rasterizers: checked, not read
+            const tinygltf::Value& t = e->Get("thicknessTexture");
+            checkTexture(integer(t, "index", -1), integer(t, "texCoord", 0), vpath + "/thicknessTexture");
+        }
+        // A volume needs light to enter it: thickness > 0 on a transmitting material (README "Overview").
+        if (v.thickness > 0 && (p.transmission.factor > 0 || p.transmission.texture)) {
+            p.volume = true;
+            out.interior = absorbingMedium(doc_, absorptionCoefficient(v, lengthScale_));
+        }
+    }
     out.material = makePbrMaterial(p);
+    if (m.normalTexture.index >= 0) {  // §3.9.3 normalTexture: linear, perturbs the shading normal
+        TexturePtr map = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, false, path + "/normalTexture");
+        out.material = makeNormalMapped(out.material, std::move(map), float(m.normalTexture.scale));
+        out.normalMapped = true;
+    }
     // §3.9.3 emission, scaled by KHR_materials_emissive_strength.
     vec3 emissive(0.0f);
     if (m.emissiveFactor.size() == 3) emissive = vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);

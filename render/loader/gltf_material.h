@@ -1,6 +1,7 @@
 // glTF materials (glTF 2.0 §3.9, the KHR_materials_* extensions) as iris materials
 // (materials/gltf_pbr.h), their textures (§3.8; colour textures sRGB-decoded, §3.9.6) and their
-// emission (emissiveFactor × emissiveTexture × KHR_materials_emissive_strength).
+// emission (emissiveFactor × emissiveTexture × KHR_materials_emissive_strength), its normal texture
+// (materials/gltf_normal_map.h) and KHR_materials_volume's interior medium (gltf_volume.h).
 #pragma once
 
 #include <map>
@@ -8,6 +9,7 @@
 #include <utility>
 
 #include "materials/gltf_pbr.h"
+#include "media/medium.h"
 #include "render/loader/gltf_document.h"
 #include "spectral/spectrum.h"
 
@@ -19,11 +21,16 @@ struct ShapeMaterial {
     SpectrumPtr emission;                // constant emission, or nullptr
     SpectrumTexturePtr emissionTexture;  // textured emission (then emission is nullptr)
     bool doubleSided = false;
+    bool normalMapped = false;  // has a normalTexture (which reads the TANGENT attribute when there is one)
+    MediumPtr interior;         // KHR_materials_volume's absorbing medium, or nullptr
 };
 
 class MaterialCache {
 public:
-    MaterialCache(Document& doc, std::string rgbMode) : doc_(doc), rgbMode_(std::move(rgbMode)) {}
+    /// `lengthScale`: how long one glTF world unit is in the scene (1 for a whole-file scene; the
+    /// XML shape's to_world scale), for the volume's attenuationDistance.
+    MaterialCache(Document& doc, std::string rgbMode, float lengthScale = 1.0f)
+        : doc_(doc), rgbMode_(std::move(rgbMode)), lengthScale_(lengthScale) {}
     /// Material `index` (−1: the spec's default material, §3.9.1), built once.
     const ShapeMaterial& material(int index);
 
@@ -33,10 +40,14 @@ private:
     TexturePtr texture(const tinygltf::TextureInfo& info, bool srgb, const std::string& path);
     TexturePtr texture(const tinygltf::Value& info, bool srgb, const std::string& path);
     TexturePtr texture(int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb, const std::string& path);
+    /// Checks a textureInfo's index and texCoord and its texture's image and sampler indices (no
+    /// image is read); returns the texture.
+    const tinygltf::Texture& checkTexture(int index, int texCoord, const std::string& path);
     std::shared_ptr<const Bitmap> image(int index, bool srgb, const std::string& path);
 
     Document& doc_;
     std::string rgbMode_;
+    float lengthScale_;
     std::map<int, ShapeMaterial> materials_;
     std::map<std::pair<int, bool>, std::shared_ptr<const Bitmap>> images_;
 };

@@ -84,4 +84,19 @@ std::optional<TriangleMesh> readPrimitive(Document& doc, int m, int p) {
     return mesh;
 }
 
+void transformTangents(TriangleMesh& mesh, const mat4& m) {
+    const mat3 linear(m);
+    const float handedness = glm::determinant(linear) < 0 ? -1.0f : 1.0f;
+    for (MeshAttribute& a : mesh.attributes) {
+        if (a.name != kTangentAttribute || a.channels != 4) continue;
+        for (size_t i = 0; i + 3 < a.values.size(); i += 4) {
+            vec3 t = linear * vec3(a.values[i], a.values[i + 1], a.values[i + 2]);
+            const float len = glm::length(t);
+            if (len > 0 && std::isfinite(len)) t /= len;
+            a.values[i] = t.x, a.values[i + 1] = t.y, a.values[i + 2] = t.z;
+            a.values[i + 3] *= handedness;
+        }
+    }
+}
+
 }  // namespace iris::gltf

@@ -14,4 +14,9 @@ namespace iris::gltf {
 /// primitive without triangles (points, lines: returned empty with a warning in doc).
 std::optional<TriangleMesh> readPrimitive(Document& doc, int m, int p);
 
+/// The TANGENT attribute placed by `m` with its mesh (TriangleMesh::transform moves positions and
+/// normals only): xyz as a direction (by m, renormalised), w · sign(det m) so that the bitangent
+/// (N × T) · w follows the mirrored frame.
+void transformTangents(TriangleMesh& mesh, const mat4& m);
+
 }  // namespace iris::gltf

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Write the glTF test assets of tests/data/gltf/ (docs/gltf.md, "Test assets").
 
-Every file is made here from code: meshes (quads, UV spheres), a tiny PNG, the materials of each
-Khronos extension iris reads, the iridescent sphere grids of experiments/industry_thin_film.py
+Every file is made here from code: meshes (quads, boxes, UV spheres), tiny PNGs, the materials of
+each Khronos extension iris reads, a normal-mapped asset, a KHR_materials_volume slab, the iridescent sphere grids of experiments/industry_thin_film.py
 (after Khronos's IridescenceDielectricSpheres / IridescenceMetallicSpheres sample models, which
 sweep film thickness and IOR), and hostile files for the importer's error tests. Valid files pass
 the Khronos glTF-Validator (tests/gltf/validate.mjs); hostile ones are named bad_*.
@@ -148,6 +148,28 @@ def sphere(radius=1.0, rings=24, segments=48):
     return pos, nrm, uv, idx
 
 
+def box(lo, hi):
+    """A closed box, 4 vertices per face, faces wound counter-clockwise seen from outside (§3.7.2.1)."""
+    c = [(lo[i] + hi[i]) / 2 for i in range(3)]
+    r = [(hi[i] - lo[i]) / 2 for i in range(3)]
+    pos, nrm, uv, idx = [], [], [], []
+    # (normal axis, sign, a axis, b axis) with a × b = the outward normal
+    for axis, sign, a, b in [(0, 1, 1, 2), (0, -1, 2, 1), (1, 1, 2, 0), (1, -1, 0, 2), (2, 1, 0, 1), (2, -1, 1, 0)]:
+        base = len(pos)
+        for sa, sb in [(-1, -1), (1, -1), (1, 1), (-1, 1)]:
+            p = list(c)
+            p[axis] += sign * r[axis]
+            p[a] += sa * r[a]
+            p[b] += sb * r[b]
+            pos.append(tuple(p))
+            n = [0.0, 0.0, 0.0]
+            n[axis] = float(sign)
+            nrm.append(tuple(n))
+            uv.append(((sa + 1) / 2, (sb + 1) / 2))
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return pos, nrm, uv, idx
+
+
 def png(width, height, rgba_rows) -> bytes:
     """An 8-bit RGBA PNG (ISO/IEC 15948: signature, IHDR, one IDAT, IEND)."""
     def chunk(kind, data):
@@ -219,6 +241,55 @@ def extensions(b: Builder):
     b.light({"type": "directional", "intensity": 2}, {"rotation": [-0.3826834, 0, 0, 0.9238795]})
 
 
+# volume_slab.gltf: KHR_materials_volume's slab seen at normal incidence against an emitting quad.
+SLAB_THICKNESS = 0.5
+SLAB_VOLUME = {"thicknessFactor": SLAB_THICKNESS, "attenuationDistance": 1.0, "attenuationColor": [0.8, 0.5, 0.2]}
+
+
+def volume_slab(b: Builder):
+    """A glass slab (ior 1.5, smooth, clear base) of thickness SLAB_THICKNESS along z bounding an
+    absorbing volume, in front of a black emitting quad (radiance 1, no specular reflection), seen
+    along −z by a camera of 0.02 rad field of view: every camera ray crosses the slab at normal
+    incidence (tests/render/test_gltf_volume.cpp's closed form)."""
+    glass = b.material({"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0,
+                                                                  "roughnessFactor": 0.0},
+                        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                                       "KHR_materials_ior": {"ior": 1.5}, "KHR_materials_volume": dict(SLAB_VOLUME)}})
+    lamp = b.material({"name": "lamp", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                       "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
+    h = SLAB_THICKNESS / 2
+    b.node({"mesh": b.mesh(box((-2, -2, -h), (2, 2, h)), glass), "name": "slab"})
+    pos = [(-4, -4, -1), (4, -4, -1), (4, 4, -1), (-4, 4, -1)]
+    b.node({"mesh": b.mesh((pos, [(0, 0, 1)] * 4, [(0, 0), (1, 0), (1, 1), (0, 1)], [0, 1, 2, 0, 2, 3]), lamp), "name": "lamp"})
+    b.camera([0, 0, 5], yfov=0.02)
+
+
+# normal_mapped.gltf: the one texel of its normal texture (8-bit RGBA, linear) and the scale.
+NORMAL_TEXEL = [191, 90, 223, 255]
+NORMAL_SCALE = 0.5
+
+
+def normal_mapped(b: Builder):
+    """Two flat quads facing +y with one constant normal texture: the left one with a TANGENT
+    attribute (0, 0, 1, w = −1) and turned 90° about y, the middle one without (tangents from its UVs); a third, with the
+    normal texture at scale 0, for the geometric normal."""
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png(1, 1, [NORMAL_TEXEL])).decode()}]
+    b.doc["textures"] = [{"source": 0}]
+    mapped = b.material({"name": "mapped", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5},
+                         "normalTexture": {"index": 0, "scale": NORMAL_SCALE}})
+    flat = b.material({"name": "scale0", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5},
+                       "normalTexture": {"index": 0, "scale": 0.0}})
+    with_tangent = quad(1.0)
+    tangent = b.floats([(0.0, 0.0, 1.0, -1.0)] * 4, "VEC4")
+    b.node({"mesh": b.mesh(with_tangent, mapped, extra={"TANGENT": tangent}), "translation": [-2.2, 0, 0],
+            "rotation": [0, 0.7071068, 0, 0.7071068], "name": "tangent"})  # 90° about y: the tangent turns to +x
+    b.node({"mesh": b.mesh(quad(1.0), mapped), "name": "computed"})
+    b.node({"mesh": b.mesh(quad(1.0), flat), "translation": [2.2, 0, 0], "name": "scale0"})
+    cam = b.camera([0, 6, 0], yfov=0.8, aspect=2.5)
+    b.doc["nodes"][cam]["rotation"] = [-0.7071068, 0, 0, 0.7071068]  # −90° about x: looking down −y
+    b.light({"type": "directional", "intensity": 2}, {"rotation": [-0.3826834, 0, 0, 0.9238795]})
+
+
 def iridescent_spheres(b: Builder, metallic: bool):
     """Khronos-style sweep: columns over film thickness, rows over film IOR (dielectric base) or
     base colour (metallic base, film IOR 1.5); sphere centres 1.1 apart."""
@@ -259,8 +330,23 @@ def hostile(out: Path):
     variant("bad_index.gltf", lambda d: d["meshes"][0]["primitives"][0].update(indices=99))
     variant("required_unsupported.gltf", lambda d: d.update(extensionsUsed=["KHR_draco_mesh_compression"],
                                                     extensionsRequired=["KHR_draco_mesh_compression"]))
-    variant("warn_used.gltf", lambda d: d.update(extensionsUsed=["EXT_lights_ies", "KHR_materials_volume"]))
+    variant("warn_used.gltf", lambda d: d.update(extensionsUsed=["EXT_lights_ies", "KHR_materials_anisotropy"]))
     variant("bad_cycle.gltf", lambda d: d["nodes"][0].update(children=[0]))
+
+    def bad_normal_texture(d):
+        d["materials"][0]["normalTexture"] = {"index": 5}
+    variant("bad_normal_texture.gltf", bad_normal_texture)
+
+    def volume_variant(name, change):
+        v = Builder()
+        volume_slab(v)
+        v.write_gltf(out / name)
+        doc = json.loads((out / name).read_text())
+        change(doc["materials"][0]["extensions"]["KHR_materials_volume"])
+        (out / name).write_text(json.dumps(doc, indent=1) + "\n")
+
+    volume_variant("bad_volume_distance.gltf", lambda e: e.update(attenuationDistance=0))
+    volume_variant("bad_volume_color.gltf", lambda e: e.update(attenuationColor=[0.5, 1.5, 0.5]))
 
     def missing_texture(d):
         d["images"] = [{"uri": "missing.png"}]
@@ -277,7 +363,7 @@ def main_into(out):
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     for name, make in [("basic", basic), ("instanced", instanced), ("strips_fans", strips_fans), ("textured", textured),
-                       ("extensions", extensions)]:
+                       ("extensions", extensions), ("volume_slab", volume_slab), ("normal_mapped", normal_mapped)]:
         b = Builder()
         make(b)
         b.write_gltf(out / f"{name}.gltf")
