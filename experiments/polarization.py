@@ -13,8 +13,13 @@ converged polarized reference:
   * soap_film, oil_on_water: a free-standing water film and an oil film on water (the thinfilm
     parameters of scenes/default.xml) lit by a white area light seen through a linear polarizer that
     passes s- or p-polarized light; per thickness, viewing angle and polarizer orientation;
+  * soap_sky, oil_sky: the same films under a polarized sky: a box of Rayleigh-scattering air in the
+    film's mirror direction, lit by a sun 90° from the reflected ray (sky light s- or p-polarized at
+    the film); per thickness, viewing angle and sun position;
   * camera_polarizer: scenes/default.xml's three film spheres seen through a linear polarizer in
-    front of the lens, per orientation of its axis.
+    front of the lens, per orientation of its axis; and camera_stokes, the same view without the
+    polarizer rendered by the `stokes` integrator: its S1 image (what unpolarized transport predicts
+    to be 0), checked against S1 = I(0) - I(90) of the polarizer renders.
 
 For every grid point: ΔE00 and relMSE of a spectral render against the polarized reference, next to
 the noise floor (a polarized render of the same spp and another seed against the same reference),
@@ -33,7 +38,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from iris_experiments import exr, grid  # noqa: E402
+from iris_experiments import exr, grid, stokes_images  # noqa: E402
 from iris_experiments.collect import job_row  # noqa: E402
 from iris_experiments.convergence import ConvergenceStudy  # noqa: E402
 from iris_experiments.experiment import Analysis, ConvergenceExperiment, run  # noqa: E402
@@ -45,6 +50,9 @@ from iris_experiments.sweep import Sweep, format_value, slug  # noqa: E402
 PLATE = "experiments/scenes/polarization_glass_plate.xml"
 LIGHT = "experiments/scenes/polarization_polarized_light.xml"
 CAMERA = "experiments/scenes/polarization_camera_polarizer.xml"
+SKY = "experiments/scenes/polarization_rayleigh_sky.xml"
+STOKES = "experiments/scenes/polarization_camera_stokes.xml"
+SKY_PARAMS = ("angle", "thickness", "sun", "film_ior", "substrate_eta", "res", "spp")
 FILM_PARAMS = ("angle", "thickness", "pol_theta", "film_ior", "substrate_eta", "transmission", "res", "spp")
 SCENES = {
     "glass_plate": SceneSpec(PLATE, materials=("thinfilm",), params=("angle", "thickness", "res", "spp"),
@@ -53,33 +61,48 @@ SCENES = {
                            note="free-standing water film lit through a linear polarizer"),
     "oil_on_water": SceneSpec(LIGHT, materials=("thinfilm", "polarizer"), params=FILM_PARAMS,
                               note="oil film on water lit through a linear polarizer"),
+    "soap_sky": SceneSpec(SKY, materials=("thinfilm",), params=SKY_PARAMS,
+                          note="free-standing water film under a Rayleigh-scattering sky lit by the sun"),
+    "oil_sky": SceneSpec(SKY, materials=("thinfilm",), params=SKY_PARAMS,
+                         note="oil film on water under a Rayleigh-scattering sky lit by the sun"),
     "camera_polarizer": SceneSpec(CAMERA, materials=("thinfilm", "polarizer"), params=("pol_theta", "res", "spp"),
                                   note="scenes/default.xml's film spheres behind a linear polarizer"),
+    "camera_stokes": SceneSpec(STOKES, materials=("thinfilm",), params=("res", "spp"),
+                               note="the camera_polarizer view without the polarizer, S0-S3 from the stokes integrator"),
 }
 # The films' parameters (scenes/default.xml: soap bubble and oil on water).
 # The soap film's transmitted light would only reach the black absorber under it: the scene leaves
 # out its transmission lobe (same image, less noise; see the scene's comment).
 SCENE_DEFINES = {"soap_film": {"film_ior": 1.33, "substrate_eta": 1.0, "transmission": "false"},
-                 "oil_on_water": {"film_ior": 1.47, "substrate_eta": 1.33, "transmission": "false"}}
+                 "oil_on_water": {"film_ior": 1.47, "substrate_eta": 1.33, "transmission": "false"},
+                 "soap_sky": {"film_ior": 1.33, "substrate_eta": 1.0},
+                 "oil_sky": {"film_ior": 1.47, "substrate_eta": 1.33}}
 # Scene parameters swept per scene (film thickness in nm, viewing angle from the normal in degrees,
 # polarizer axis in degrees: 0 passes s-polarized light in the film scenes and horizontal light at
-# the camera, 90 p-polarized / vertical).
+# the camera, 90 p-polarized / vertical; sun position in degrees about the reflected ray: 0 makes the
+# sky light reaching the film s-polarized, 90 p-polarized).
 FULL_GRID = {
     "glass_plate": {"thickness": [100, 250, 400], "angle": [30, 56, 70]},
     "soap_film": {"thickness": [200, 400, 800], "angle": [30, 53, 70], "pol_theta": [0, 90]},
     "oil_on_water": {"thickness": [200, 400, 800], "angle": [30, 53, 70], "pol_theta": [0, 90]},
+    "soap_sky": {"thickness": [200, 400, 800], "angle": [30, 53, 70], "sun": [0, 90]},
+    "oil_sky": {"thickness": [200, 400, 800], "angle": [30, 53, 70], "sun": [0, 90]},
     "camera_polarizer": {"pol_theta": [0, 45, 90]},
 }
 QUICK_GRID = {
     "glass_plate": {"thickness": [250], "angle": [30, 56]},
     "soap_film": {"thickness": [400], "angle": [53], "pol_theta": [0, 90]},
     "oil_on_water": {"thickness": [400], "angle": [53], "pol_theta": [0, 90]},
+    "soap_sky": {"thickness": [400], "angle": [53], "sun": [0, 90]},
+    "oil_sky": {"thickness": [400], "angle": [53], "sun": [0, 90]},
     "camera_polarizer": {"pol_theta": [0, 90]},
 }
 # The grid point of each scene whose convergence study (error against wall time) is rendered.
 CONVERGENCE_POINT = {"glass_plate": {"thickness": 250, "angle": 56},
                      "soap_film": {"thickness": 400, "angle": 53, "pol_theta": 0},
                      "oil_on_water": {"thickness": 400, "angle": 53, "pol_theta": 0},
+                     "soap_sky": {"thickness": 400, "angle": 53, "sun": 0},
+                     "oil_sky": {"thickness": 400, "angle": 53, "sun": 0},
                      "camera_polarizer": {"pol_theta": 90}}
 MODES = {"spectral": {"mode": "spectral"}, "polarized": {"mode": "polarized"}}
 BASELINE = "polarized"
@@ -88,7 +111,10 @@ FULL = {"res": 64, "ref_spp": 128, "ref_seeds": 2, "test_spp": 32,
 QUICK = {"res": 32, "ref_spp": 16, "ref_seeds": 2, "test_spp": 4,
          "convergence": {"ref_spp": 32, "ref_seeds": 2, "spp_levels": [2, 8], "seeds": [1, 2], "time_limit": 0.2}}
 JND = 1.0   # ΔE00 of about 1: a just-noticeable difference
-AXIS_NAMES = {"thickness": "thickness [nm]", "angle": "angle [°]", "pol_theta": "polarizer [°]"}
+AXIS_NAMES = {"thickness": "thickness [nm]", "angle": "angle [°]", "pol_theta": "polarizer [°]", "sun": "sun [°]"}
+# The pair of camera_polarizer renders whose difference is S1 (polarizer along and normal to the
+# stokes integrator's basis vector, the image's horizontal).
+S1_PAIR = (0, 90)
 # ---------------------------------------------------------------------------------------------
 
 
@@ -100,12 +126,16 @@ class Polarization(ConvergenceExperiment):
     name = "polarization"
     title = "How wrong is unpolarized transport for thin films?"
     question = ("Question: where polarization matters (two specular bounces off a film and a glass plate, soap and oil "
-                "films lit by polarized light, a camera behind a linear polarizer), how far (ΔE00, relMSE) is iris's "
+                "films lit by polarized light and under a polarized sky, a camera behind a linear polarizer and its S1 image), how far (ΔE00, relMSE) is iris's "
                 "spectral mode, which averages the s and p reflectances at every bounce, from the polarized mode's "
                 "converged image, per film thickness and viewing angle; and what does polarized transport cost in "
                 "render time for a given error?")
     scene_specs = SCENES
     FULL, QUICK = FULL, QUICK
+
+    def study_labels(self):
+        """The scenes with a convergence study (camera_stokes has none: spectral mode has no S1)."""
+        return [label for label in self.scene_specs if label in CONVERGENCE_POINT]
 
     def grid_axes(self, quick):
         return {label: axes for label, axes in (QUICK_GRID if quick else FULL_GRID).items() if label in self.scene_specs}
@@ -119,6 +149,7 @@ class Polarization(ConvergenceExperiment):
                 "grid reference": f"polarized, {c['ref_seeds']} seeds x {c['ref_spp']} spp, merged",
                 "grid test renders": f"spectral and polarized (noise floor), {c['test_spp']} spp, seeds 1 and 2",
                 "convergence points": {k: v for k, v in CONVERGENCE_POINT.items() if k in self.scene_specs},
+                "stokes render": f"camera_stokes, polarized, {c['ref_seeds'] * c['ref_spp']} spp, seed 3000",
                 "just-noticeable ΔE00": JND, **self.study.settings()}
 
     def sweeps(self, quick, args):
@@ -139,9 +170,12 @@ class Polarization(ConvergenceExperiment):
         self.study = ConvergenceStudy(MODES, BASELINE, {"mode": "polarized"}, conv["spp_levels"], conv["seeds"],
                                       conv["ref_spp"], [2000 + i for i in range(conv["ref_seeds"])],
                                       time_limit=conv["time_limit"])
-        per_scene = {label: {"res": c["res"], **SCENE_DEFINES.get(label, {}), **CONVERGENCE_POINT[label]}
-                     for label in self.scene_specs}
-        return out + self.study.sweeps(self.scene_paths(), per_scene)
+        if "camera_stokes" in self.scene_specs:
+            out.append(Sweep("stokes", {"camera_stokes": self.scene_specs["camera_stokes"].path},
+                             fixed={"res": c["res"], "mode": "polarized", "spp": c["ref_seeds"] * c["ref_spp"], "seed": 3000}))
+        labels = self.study_labels()
+        per_scene = {label: {"res": c["res"], **SCENE_DEFINES.get(label, {}), **CONVERGENCE_POINT[label]} for label in labels}
+        return out + self.study.sweeps({label: self.scene_specs[label].path for label in labels}, per_scene)
 
     # -- the grid: spectral against the polarized reference per thickness / angle ----------------
     @staticmethod
@@ -241,7 +275,7 @@ class Polarization(ConvergenceExperiment):
             figs.append(grid.line_plot(series, ctx.out_dir / f"{label}_de00_vs_angle.png", "viewing angle [°]",
                                        "mean ΔE00, spectral vs polarized ref.", title=label))
         point = CONVERGENCE_POINT[label]
-        shown = [k for k in images if all(v == point[kk] for kk, v in zip(keys, k) if kk not in ("angle", "pol_theta"))]
+        shown = [k for k in images if all(v == point[kk] for kk, v in zip(keys, k) if kk not in ("angle", "pol_theta", "sun"))]
         cells = [list(images[k]) for k in sorted(shown)]
         names = [point_text(dict(zip(keys, k))) for k in sorted(shown)]
         figs.append(grid.image_grid(cells, ctx.out_dir / f"{label}_renders.jpg", row_labels=names,
@@ -254,9 +288,10 @@ class Polarization(ConvergenceExperiment):
         analysis = Analysis([], ["sweep", "scene", "thickness", "angle", "pol_theta", "config", "spp", "de00_spectral",
                                  "de00_floor", "relmse_spectral", "relmse_floor", "mean_ratio", "cost_ratio",
                                  "render_time_s", "relmse", "de00_mean"], [])
-        costs = {}
+        costs, grid_images = {}, {}
         for label, axes in self.grid_axes(ctx.args.quick).items():
             rows, images = self.grid_rows(ctx, label, axes)
+            grid_images[label] = images
             analysis.rows += rows
             analysis.sections.append(self.grid_section(label, axes, rows))
             analysis.conclusions += self.grid_conclusions(label, axes, rows)
@@ -265,7 +300,8 @@ class Polarization(ConvergenceExperiment):
         analysis.conclusions.append(
             "Cost of polarization at equal spp (polarized / spectral render time, median over each scene's grid "
             "renders): " + "; ".join(f"{k} {fmt(statistics.median(v), 3)}x" for k, v in costs.items() if v) + ".")
-        for label in self.scene_specs:
+        self.stokes_analysis(ctx, analysis, grid_images.get("camera_polarizer", {}))
+        for label in self.study_labels():
             result = self.study.analyse(ctx, label)
             for r in result.rows:
                 r["sweep"] = r.get("study", "convergence")
@@ -279,6 +315,44 @@ class Polarization(ConvergenceExperiment):
                                   "same spp and resolution, one job at a time.\n\n" +
                                   markdown_table(cost_rows, ["scene", "median cost ratio", "min", "max"], digits=3)))
         return analysis
+
+    # -- the camera behind a linear polarizer: the S1 image ----------------------------------------
+    def stokes_analysis(self, ctx, analysis, pair_images):
+        """S1 of the stokes render against I(0) - I(90) of the camera_polarizer references."""
+        jobs = ctx.by_sweep("stokes")
+        pair = [pair_images.get((t,)) for t in S1_PAIR]
+        if not jobs or not all(pair):
+            return
+        stokes = stokes_images.stokes_of(jobs[0].output)
+        refs = [stokes_images.grey_of(p[0]) for p in pair]        # polarized references
+        spectral = [stokes_images.grey_of(p[1]) for p in pair]    # spectral renders (same seed)
+        m = stokes_images.s1_metrics(stokes, *refs)
+        spectral_s1 = float(np.mean(np.abs(spectral[0] - spectral[1])))
+        analysis.rows.append({"sweep": "stokes", "scene": "camera_stokes", **m, "spectral_abs_s1_over_s0":
+                              spectral_s1 / m["s0_mean"] if m["s0_mean"] > 0 else math.nan, "output": str(jobs[0].output)})
+        analysis.figures.append(stokes_images.s1_figure(
+            [("S0 (stokes)", stokes[0]), ("S1 (stokes)", stokes[1]), ("I(0) − I(90), polarized", refs[0] - refs[1]),
+             ("I(0) − I(90), spectral", spectral[0] - spectral[1])],
+            ctx.out_dir / "camera_stokes_s1.png", title="camera behind a linear polarizer: S1 (red: horizontal)"))
+        analysis.sections.append(("The camera behind a linear polarizer: S1", self.stokes_text(m, spectral_s1)))
+        analysis.conclusions.append(
+            f"camera_stokes: the S1 image (stokes integrator) has mean |S1| = {fmt(m['abs_s1_over_s0'], 3)} of mean S0 "
+            f"(mean linear polarization sqrt(S1² + S2²): {fmt(m['dolp_mean'], 3)} of S0); unpolarized (spectral) "
+            f"transport predicts S1 = 0 (its I(0) − I(90): {fmt(spectral_s1, 3)}). The polarizer pair agrees with the "
+            f"Stokes channels: mean I(0) − I(90) = {fmt(m['pair_s1_mean'], 3)} against S1 {fmt(m['s1_mean'], 3)}, "
+            f"I(0) + I(90) = {fmt(m['pair_s0_mean'], 3)} against S0 {fmt(m['s0_mean'], 3)}, pixel correlation "
+            f"{fmt(m['pair_s1_corr'], 3)} (relative L2 distance {fmt(m['pair_s1_rel_l2'], 3)}, render noise included).")
+
+    @staticmethod
+    def stokes_text(m, spectral_s1):
+        rows = [{"quantity": k, "value": v} for k, v in m.items()] + [
+            {"quantity": "spectral mean |I(0) − I(90)|", "value": spectral_s1}]
+        return ("The camera_polarizer view without the polarizer, rendered by the stokes integrator "
+                f"({STOKES}); its basis vector is the image's horizontal, the polarizer's axis at 0°, so "
+                "S1 = I(0) − I(90) and S0 = I(0) + I(90) of the camera_polarizer references (Malus's law). "
+                "abs_s1_over_s0 is the share of the image that unpolarized transport cannot reproduce behind a "
+                "polarizer (its S1 is 0); pair_* compare the Stokes channels with the polarizer pair.\n\n"
+                + markdown_table(rows, ["quantity", "value"], digits=4))
 
     def crossover(self, label, result):
         """Where the polarized curve's relMSE falls below the spectral one's (its bias)."""

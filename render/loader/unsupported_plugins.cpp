@@ -8,6 +8,9 @@
 
 namespace iris {
 
+IRIS_HINT(MaterialRegistry, "measured_polarized",
+          "iris cannot read Mitsuba 3's measured pBRDF files (.pbsdf; docs/polarization.md says what is missing): use "
+          "'pplastic' or 'roughconductor' as an approximation");
 IRIS_HINT(MaterialRegistry, "hair", "iris has no hair BSDF: use roughconductor or roughdielectric as an approximation");
 IRIS_HINT(LightRegistry, "sunsky", "iris has no sky model: use 'envmap' with a rendered sky image");
 IRIS_HINT(LightRegistry, "sky", "iris has no sky model: use 'envmap' with a rendered sky image");

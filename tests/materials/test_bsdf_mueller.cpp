@@ -40,6 +40,7 @@ std::vector<std::pair<std::string, std::shared_ptr<Properties>>> polarizingBSDFs
         {"roughdielectric", makeProps("roughdielectric", {{"int_ior", 1.6f}, {"alpha", 0.25f}})},
         {"plastic", makeProps("plastic", {{"int_ior", 1.7f}})},
         {"roughplastic", makeProps("roughplastic", {{"alpha", 0.2f}})},
+        {"pplastic", makeProps("pplastic", {{"alpha", 0.2f}, {"distribution", std::string("ggx")}})},
         {"twosided", wrap("twosided", rc())},
         {"blendbsdf", [&] { auto b = wrap("blendbsdf", rc(), {{"weight", 0.4f}}); b->addChild(makeProps("diffuse", {})); return b; }()},
         {"mask", wrap("mask", rc(), {{"opacity", 0.7f}})},
@@ -174,7 +175,7 @@ TEST(PolarizedBSDF, ReciprocalReflectionIsQMTransposeQ) {
     // are the same vectors for both paths — here the s axes of the microfacet, Q = diag(1, 1, −1, 1).
     std::mt19937 rng(13);
     for (const auto& [name, props] : polarizingBSDFs()) {
-        if (name != "roughconductor" && name != "thinfilm rough" && name != "roughplastic") continue;
+        if (name != "roughconductor" && name != "thinfilm rough" && name != "roughplastic" && name != "pplastic") continue;
         const auto inst = makeBSDF(*props, spectralWl());
         for (int t = 0; t < 200; ++t) {
             vec3 wo = randomDirection(rng), wi = randomDirection(rng);

@@ -177,6 +177,23 @@ MaterialStress roughplastic() {
     });
 }
 
+// Mitsuba 3's polarized plastic (materials/pplastic.cpp): a specular microfacet lobe plus a diffuse
+// lobe attenuated by two Fresnel transmissions; it loses energy but never gains any.
+MaterialStress pplastic() {
+    auto pp = [](const char* dist, float a, float eta) {
+        return P("pplastic").str("distribution", dist).f("alpha", a).f("eta", eta).f("diffuse_reflectance", 1.0f);
+    };
+    return conserving({
+        {"beckmann a=1e-4 eta 1.0001", pp("beckmann", 1e-4f, 1.0001f)},
+        {"ggx a=1 eta 4", pp("ggx", 1.0f, 4.0f)},
+        {"ggx a=0 (clamped) eta 1/1.5", pp("ggx", 0.0f, 1.0f / 1.5f)},
+        {"beckmann a=0.3 per-channel", P("pplastic").f("alpha", 0.3f).rgb("diffuse_reflectance", 1.0f, 0.0f, 0.5f)
+                                           .rgb("specular_reflectance", 0.0f, 1.0f, 1.0f)},
+        {"anisotropic ggx 0.05 x 0.8", P("pplastic").str("distribution", "ggx").f("alpha_u", 0.05f).f("alpha_v", 0.8f)
+                                           .f("diffuse_reflectance", 1.0f)},
+    });
+}
+
 MaterialStress phong() {
     auto ph = [](float kd, float ks, float e) {
         return P("phong").f("diffuse_reflectance", kd).f("specular_reflectance", ks).f("exponent", e);
@@ -481,6 +498,7 @@ const std::map<std::string, Builder>& table() {
         {"roughdielectric", roughdielectric},
         {"plastic", plastic},
         {"roughplastic", roughplastic},
+        {"pplastic", pplastic},
         {"phong", phong},
         {"cook_torrance", cookTorrance},
         {"granier", granier},
