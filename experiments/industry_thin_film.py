@@ -3,7 +3,9 @@
 glTF's KHR_materials_iridescence evaluates Belcour & Barla 2017 in RGB with Schlick interfaces,
 phase shifts of 0 or π, two harmonics of a Gaussian fit of the CIE functions and a fixed white;
 OpenPBR's specification recommends Belcour & Barla (here iris's version with exact Fresnel
-terms, spectral/belcour_barla.h); iris's own RGB mode evaluates the exact film at three
+terms, spectral/belcour_barla.h); Blender Cycles 4.2 uses Belcour & Barla with exact dielectric
+Fresnel terms, three harmonics, a 30 nm blend and a white-point product, on dielectric bases only
+(spectral/thin_film_cycles.h); iris's own RGB mode evaluates the exact film at three
 wavelengths. This experiment measures each against exact per-wavelength interference:
 
   * BRDF level: the Fresnel colour over film thickness 0–1500 nm × every angle, for film IOR
@@ -12,7 +14,9 @@ wavelengths. This experiment measures each against exact per-wavelength interfer
   * rendered glTF scenes (tests/data/gltf/iridescence_*_spheres.gltf, the Khronos sample models'
     sweep recreated by tests/gltf/make_assets.py): RGB mode with rgb_mode point and
     khr_iridescence, and spectral N = 4, 8, 16, against a converged spectral reference, with
-    their render times.
+    their render times; and the dielectric sweep made of iris's thinfilm material
+    (experiments/scenes/industry_thin_film_thinfilm.xml), whose rgb_mode also offers
+    belcour_barla and cycles_4_2 (the glTF material does not).
 
     python3 experiments/industry_thin_film.py [--quick] [--parallel N] ...
 """
@@ -34,6 +38,7 @@ from iris_experiments.sweep import Sweep  # noqa: E402
 SCENES = {
     "dielectric": SceneSpec("experiments/scenes/industry_thin_film_dielectric.xml", params=("rgb_mode", "res")),
     "metallic": SceneSpec("experiments/scenes/industry_thin_film_metallic.xml", params=("rgb_mode", "res")),
+    "thinfilm": SceneSpec("experiments/scenes/industry_thin_film_thinfilm.xml", params=("rgb_mode", "res")),
 }
 BASES = {"dielectric IOR 1.5": ("dielectric", 1.5), "gold-coloured metal": ("metal", (1.0, 0.71, 0.29)),
          "silver-coloured metal": ("metal", (0.97, 0.96, 0.91))}
@@ -43,7 +48,9 @@ FULL = {"res": 200, "spp_levels": [16, 64], "ref_spp": 256, "ref_seeds": 2, "thi
 QUICK = {"res": 32, "spp_levels": [2], "ref_spp": 8, "ref_seeds": 1, "thickness_step": 100, "angle_step": 15,
          "lambda_step": 10}
 SPECTRAL_N = [4, 8, 16]
-RGB_MODES = ["point", "khr_iridescence"]
+RGB_MODES = {"dielectric": ["point", "khr_iridescence"], "metallic": ["point", "khr_iridescence"],   # rgb_mode per scene
+             "thinfilm": ["point", "belcour_barla", "cycles_4_2"]}
+RGB_SWEEPS = {"rgb": ["dielectric", "metallic"], "rgb_thinfilm": ["thinfilm"]}   # scenes sharing their rgb_mode values
 THICKNESS_BANDS = {"thin": (0, 100), "mid": (100, 600), "thick": (600, 1e9)}   # nm, for "where it fails"
 JND = 1.0   # ΔE00 of about 1 is commonly taken as a just-noticeable difference
 # ---------------------------------------------------------------------------------------------
@@ -52,8 +59,8 @@ JND = 1.0   # ΔE00 of about 1 is commonly taken as a just-noticeable difference
 class IndustryThinFilm(Experiment):
     name = "industry_thin_film"
     title = "The industry's RGB thin-film models against exact spectral interference"
-    question = ("Question: where do KHR_materials_iridescence's RGB formulas, Belcour & Barla's RGB integration and "
-                "three-wavelength point sampling differ visibly (ΔE00 > 1) from exact per-wavelength thin-film "
+    question = ("Question: where do KHR_materials_iridescence's RGB formulas, Belcour & Barla's RGB integration, "
+                "Blender Cycles 4.2's thin film and three-wavelength point sampling differ visibly (ΔE00 > 1) from exact per-wavelength thin-film "
                 "interference, and what does spectral rendering with N = 4, 8, 16 wavelengths cost in comparison?")
     scene_specs = SCENES
 
@@ -76,8 +83,10 @@ class IndustryThinFilm(Experiment):
         return [
             Sweep("reference", self.scene_paths(), axes={"seed": [1000 + i for i in range(c["ref_seeds"])]},
                   fixed={"mode": "spectral", "spectral_samples": 16, "spp": c["ref_spp"], "rgb_mode": "point"}, per_scene=res),
-            Sweep("rgb", self.scene_paths(), axes={"rgb_mode": RGB_MODES, "spp": c["spp_levels"]},
-                  fixed={"mode": "rgb", "seed": 1}, per_scene=res),
+            # One RGB sweep per set of rgb_mode values: the glTF scenes, and the thinfilm scene.
+            *[Sweep(name, {label: self.scene_paths()[label] for label in labels},
+                    axes={"rgb_mode": RGB_MODES[labels[0]], "spp": c["spp_levels"]}, fixed={"mode": "rgb", "seed": 1},
+                    per_scene=res) for name, labels in RGB_SWEEPS.items()],
             Sweep("spectral", self.scene_paths(), axes={"spectral_samples": SPECTRAL_N, "spp": c["spp_levels"]},
                   fixed={"mode": "spectral", "seed": 1, "rgb_mode": "point"}, per_scene=res),
         ]
@@ -95,7 +104,10 @@ class IndustryThinFilm(Experiment):
             for film in FILM_IORS:
                 ref = thin_film_maps.exact_rgb(iris, base, film, thickness, cos, lam)
                 for model, fn in thin_film_maps.MODELS.items():
-                    de, rel = thin_film_maps.errors(iris, fn(iris, base, film, thickness, cos), ref)
+                    test = fn(iris, base, film, thickness, cos)
+                    if test is None:   # the model has no form for this base (Cycles 4.2 on metals)
+                        continue
+                    de, rel = thin_film_maps.errors(iris, test, ref)
                     maps[(base_name, film, model)] = de
                     over = de > JND
                     bands = {f"over_jnd_{name}": float(over[(thickness >= lo) & (thickness < hi)].mean())
@@ -112,9 +124,13 @@ class IndustryThinFilm(Experiment):
             share = np.mean([r["fraction_over_jnd"] for r in mine])
             conclusions.append(
                 f"BRDF level, {model}: ΔE00 > {JND:g} on {100 * share:.0f} % of (thickness, angle) cells over all bases "
-                f"and film IORs; worst mean ΔE00 {worst['de00_mean']:.2f} ({worst['base']}, film IOR {worst['film_ior']}).")
+                f"and film IORs; worst mean ΔE00 {worst['de00_mean']:.2f} ({worst['base']}, film IOR {worst['film_ior']})."
+                + ("" if len({r["base"] for r in mine}) == len(BASES) else
+                   f" Bases without this model: {', '.join(b for b in BASES if all(r['base'] != b for r in mine))}."))
             for base_name in BASES:
                 b = [r for r in mine if r["base"] == base_name]
+                if not b:
+                    continue
                 first = [r["first_thickness_over_jnd_nm"] for r in b if r["first_thickness_over_jnd_nm"] is not None]
                 conclusions.append(
                     f"  {model} on {base_name}: mean ΔE00 {min(r['de00_mean'] for r in b):.2f}-{max(r['de00_mean'] for r in b):.2f} "
@@ -125,6 +141,8 @@ class IndustryThinFilm(Experiment):
                                  ("over_jnd_thin", "over_jnd_mid", "over_jnd_thick", "over_jnd_grazing")) + ".")
         conclusions.append("  (At d = 0 a model differs from the reference only by its bare base: Schlick instead of exact Fresnel "
                            "for KHR, and for metals the three-channel base colour against its upsampled spectrum.)")
+        conclusions.append("  (cycles_4_2 blends the film index towards the outside below 30 nm, so thin films fade out by "
+                           "construction; it exists for dielectric bases only.)")
         figures.append(self.heatmaps(ctx, maps, thickness, angles))
 
     def heatmaps(self, ctx, maps, thickness, angles):
@@ -137,6 +155,10 @@ class IndustryThinFilm(Experiment):
         fig.subplots_adjust(hspace=0.65, wspace=0.3, right=0.84, top=0.9)
         for i, base in enumerate(BASES):
             for j, model in enumerate(models):
+                if (base, film, model) not in maps:   # model without a form for this base
+                    axes[i][j].set_axis_off()
+                    axes[i][j].set_title(f"{model}\n{base}: not defined", fontsize=8)
+                    continue
                 im = axes[i][j].imshow(maps[(base, film, model)].T, origin="lower", aspect="auto", vmin=0, vmax=10,
                                        extent=[thickness[0], thickness[-1], angles[0], angles[-1]], cmap="magma")
                 axes[i][j].contour(thickness, angles, maps[(base, film, model)].T, levels=[JND], colors="cyan", linewidths=0.6)
@@ -156,10 +178,10 @@ class IndustryThinFilm(Experiment):
             refs = [j.output for j in ctx.by_sweep("reference") if j.label == label]
             ref = ctx.merge(refs, ctx.out_dir / "reference" / f"{label}.exr")
             series, mine = {}, []
-            for job in ctx.by_sweep("rgb") + ctx.by_sweep("spectral"):
+            for job in [j for sweep in RGB_SWEEPS for j in ctx.by_sweep(sweep)] + ctx.by_sweep("spectral"):
                 if job.label != label:
                     continue
-                name = f"RGB {job.settings['rgb_mode']}" if job.sweep == "rgb" else f"spectral N={job.settings['spectral_samples']}"
+                name = f"RGB {job.settings['rgb_mode']}" if job.sweep in RGB_SWEEPS else f"spectral N={job.settings['spectral_samples']}"
                 m = ctx.compare(job.output, ref)
                 row = job_row(job, {"level": "render", "model": name, "de00_mean": m["de00_mean"], "de00_p99": m["de00_p99"],
                                     "relmse": m["relmse"]})
@@ -176,10 +198,11 @@ class IndustryThinFilm(Experiment):
                     best[r["model"]] = r
             conclusions.append(f"Rendered {label} spheres at {max(x['spp'] for x in mine)} spp: " + "; ".join(
                 f"{k} ΔE00 {v['de00_mean']:.2f} in {v.get('render_time_s', float('nan')):.1f} s" for k, v in sorted(best.items())) + ".")
-            cells = [[ref] + [next(j.output for j in ctx.by_sweep("rgb") if j.label == label and j.settings["rgb_mode"] == mode
-                                   and j.settings["spp"] == max(self.cfg(ctx.args.quick)["spp_levels"])) for mode in RGB_MODES]]
+            sweep = next(name for name, labels in RGB_SWEEPS.items() if label in labels)
+            cells = [[ref] + [next(j.output for j in ctx.by_sweep(sweep) if j.label == label and j.settings["rgb_mode"] == mode
+                                   and j.settings["spp"] == max(self.cfg(ctx.args.quick)["spp_levels"])) for mode in RGB_MODES[label]]]
             figures.append(grid.image_grid(cells, ctx.out_dir / f"{label}_renders.jpg",
-                                           col_labels=["spectral reference"] + [f"RGB {m}" for m in RGB_MODES], cell_inches=2.6))
+                                           col_labels=["spectral reference"] + [f"RGB {m}" for m in RGB_MODES[label]], cell_inches=2.6))
 
     def analyse(self, ctx):
         rows, figures, conclusions = [], [], []

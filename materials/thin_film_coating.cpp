@@ -8,6 +8,7 @@
 #include "core/quadrature.h"
 #include "materials/textures/texture_params.h"
 #include "spectral/belcour_barla.h"
+#include "spectral/thin_film_cycles.h"
 #include "spectral/conductor_presets.h"
 #include "spectral/thin_film_airy.h"
 #include "spectral/thin_film_airy_batch.h"
@@ -76,15 +77,22 @@ ThinFilmCoatingSpec ThinFilmCoatingSpec::fromProperties(const Properties& p, flo
     const std::string rgb = p.getString("rgb_mode", "point");
     if (rgb == "point") s.rgbMode = ThinFilmRGBMode::Point;
     else if (rgb == "belcour_barla") s.rgbMode = ThinFilmRGBMode::BelcourBarla;
-    else failAt(p.locationOf("rgb_mode"), "rgb_mode must be 'point' or 'belcour_barla', got '", rgb, "'");
-    if (s.rgbMode == ThinFilmRGBMode::BelcourBarla) {
-        if (!s.extra.empty()) failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' supports a single film only");
+    else if (rgb == "cycles_4_2") s.rgbMode = ThinFilmRGBMode::Cycles42;
+    else failAt(p.locationOf("rgb_mode"), "rgb_mode must be 'point', 'belcour_barla' or 'cycles_4_2', got '", rgb, "'");
+    if (s.rgbMode != ThinFilmRGBMode::Point) {
+        const SourceLocation loc = p.locationOf("rgb_mode");
+        if (!s.extra.empty()) failAt(loc, "rgb_mode '", rgb, "' supports a single film only");
         if (s.mode != ThinFilmPhaseMode::Exact)
-            failAt(p.locationOf("rgb_mode"), "rgb_mode 'belcour_barla' integrates the exact Airy sum; use phase_mode 'exact'");
+            failAt(loc, "rgb_mode '", rgb, "' integrates the exact Airy sum; use phase_mode 'exact'");
         for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f)
             if (s.filmK.eval(l) != 0)
-                failAt(p.locationOf("film_k"), "rgb_mode 'belcour_barla' needs a non-absorbing film (film_k = 0)");
+                failAt(p.locationOf("film_k"), "rgb_mode '", rgb, "' needs a non-absorbing film (film_k = 0)");
     }
+    if (s.rgbMode == ThinFilmRGBMode::Cycles42)  // Cycles 4.2 applies the film to dielectric bases only
+        for (float l = kLambdaMin; l <= kLambdaMax; l += 5.0f)
+            if (s.substrateK.eval(l) != 0)
+                failAt(p.locationOf("rgb_mode"), "rgb_mode 'cycles_4_2' needs a dielectric substrate (extinction 0): "
+                       "Cycles 4.2 has no thin film on metals");
     return s;
 }
 
@@ -101,6 +109,7 @@ ThinFilmCoating::ThinFilmCoating(const ThinFilmCoatingSpec& spec, const TextureQ
       bounces_(spec.bounces),
       mode_(spec.mode),
       belcourBarla_(wl.isRGB() && spec.rgbMode == ThinFilmRGBMode::BelcourBarla),
+      cycles42_(wl.isRGB() && spec.rgbMode == ThinFilmRGBMode::Cycles42),
       extIor_(spec.extIor),
       thickness_(sanitizeThickness(spec.thickness->eval(q))) {
     rgb_ = wl.isRGB();
@@ -303,13 +312,15 @@ void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, 
 
 SampledSpectrum ThinFilmCoating::reflectance(float cosTheta) const {
     SampledSpectrum R(n_);
-    if (airy_ && !belcourBarla_) {
+    if (airy_ && !belcourBarla_ && !cycles42_) {
         exactAll(cosTheta, false, R, nullptr);
         return R;
     }
     for (int k = 0; k < n_; ++k) {
         if (belcourBarla_)
             R[k] = float(belcourBarlaReflectance(k, cosTheta, extIor_, film_[k].real(), thickness_, substrate_[k]));
+        else if (cycles42_)
+            R[k] = float(cyclesThinFilmRGB(extIor_, film_[k].real(), substrate_[k].real(), cosTheta, thickness_)[k]);
         else
             R[k] = float(stackRT(k, cosTheta).R());
     }
@@ -319,11 +330,16 @@ SampledSpectrum ThinFilmCoating::reflectance(float cosTheta) const {
 void ThinFilmCoating::reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const {
     R = SampledSpectrum(n_);
     T = SampledSpectrum(n_);
-    if (airy_ && !belcourBarla_) {
+    if (airy_ && !belcourBarla_ && !cycles42_) {
         exactAll(cosTheta, false, R, &T);
         return;
     }
     for (int k = 0; k < n_; ++k) {
+        if (cycles42_) {  // dielectric substrate (required): lossless film, T = 1 − R
+            R[k] = float(cyclesThinFilmRGB(extIor_, film_[k].real(), substrate_[k].real(), cosTheta, thickness_)[k]);
+            T[k] = 1.0f - R[k];
+            continue;
+        }
         const ThinFilmStackResult r = stackRT(k, cosTheta);
         R[k] = float(r.R());
         T[k] = float(r.T());

@@ -23,7 +23,7 @@ namespace iris {
 struct AiryAngle;  // spectral/thin_film_airy.h
 
 enum class ThinFilmSubstrate { Conductor, Dielectric };
-enum class ThinFilmRGBMode { Point, BelcourBarla };
+enum class ThinFilmRGBMode { Point, BelcourBarla, Cycles42 };
 
 /// Scene-level description of a coating (shared by thinfilm and iridescent_diffuse).
 struct ThinFilmCoatingSpec {
@@ -85,12 +85,14 @@ public:
     double thicknessNm() const { return thickness_; }
 
     /// Reflectance of the stack for light from the exterior at cosθ (to the interface normal), per
-    /// entry: RGB Belcour–Barla mode → spectrally integrated RGB; otherwise the exact / truncated /
+    /// entry: RGB Belcour–Barla mode → spectrally integrated RGB; RGB Cycles 4.2 mode → channel k of
+    /// spectral/thin_film_cycles.h with entry k's indices; otherwise the exact / truncated /
     /// incoherent stack at each wavelength (truncated sums clamped to [0, 1]).
     SampledSpectrum reflectance(float cosTheta) const;
     /// Reflectance and transmittance (into the substrate) at each wavelength. Belcour–Barla mode
     /// over a non-absorbing substrate: the integrated R and T = 1 − R (the film is lossless there);
-    /// over an absorbing one, point values.
+    /// over an absorbing one, point values. Cycles 4.2 mode (non-absorbing substrate only): its R
+    /// and T = 1 − R.
     void reflectanceTransmittance(float cosTheta, SampledSpectrum& R, SampledSpectrum& T) const;
     /// The stack lit from the substrate side (substrate must be a real dielectric medium): light
     /// in the substrate at cosθ towards the film, exiting into the exterior medium.
@@ -127,6 +129,7 @@ private:
     int n_ = 0, nExtra_ = 0, bounces_ = 1;
     ThinFilmPhaseMode mode_ = ThinFilmPhaseMode::Exact;
     bool belcourBarla_ = false;
+    bool cycles42_ = false;  // RGB mode with rgb_mode "cycles_4_2"
     double extIor_ = 1.0, thickness_ = 0.0;
     double lambda_[kMaxWavelengths];
     complexd film_[kMaxWavelengths];

@@ -383,8 +383,8 @@ std::shared_ptr<Material> createThinFilm(const Properties& p) {
             if (spec.substrateEta.eval(l) != eta0)
                 failAt(loc, "transmission needs a non-dispersive substrate_eta (directions would depend on λ)");
         }
-        if (spec.rgbMode == ThinFilmRGBMode::BelcourBarla)
-            failAt(loc, "transmission is not available with rgb_mode 'belcour_barla'");
+        if (spec.rgbMode != ThinFilmRGBMode::Point)
+            failAt(loc, "transmission is not available with rgb_mode '", p.getString("rgb_mode"), "'");
     }
     return std::make_shared<ThinFilmMaterial>(std::move(spec), MicrofacetDistribution(type, au, av, visible), smooth,
                                               transmission);

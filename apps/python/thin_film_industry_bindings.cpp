@@ -1,10 +1,11 @@
-// The industry's thin-film approximations from Python (spectral/thin_film_industry.h): the
-// KHR_materials_iridescence RGB Fresnel as its README writes it and Gulbrandsen 2014's metal
-// index. The package (iris/film.py) broadcasts the inputs to flat arrays of one length n.
+// The industry's thin-film approximations from Python (spectral/thin_film_industry.h,
+// spectral/thin_film_cycles.h): the KHR_materials_iridescence RGB Fresnel as its README writes it,
+// Blender Cycles 4.2's thin film as its source writes it, and Gulbrandsen 2014's metal index. The package (iris/film.py) broadcasts the inputs to flat arrays of one length n.
 #include <cmath>
 
 #include "apps/python/bindings.h"
 #include "metrics/color_difference.h"
+#include "spectral/thin_film_cycles.h"
 #include "spectral/thin_film_industry.h"
 
 namespace iris::python {
@@ -46,6 +47,29 @@ py::array_t<double> khrRgb(const py::array& cosTheta, const py::array& outsideIo
     return ownedArray(std::move(out), {n, 3});
 }
 
+/// (n, 3) Blender Cycles 4.2's thin-film Fresnel over a dielectric base of real index base_ior.
+py::array_t<double> cyclesRgb(const py::array& cosTheta, const py::array& outsideIor, const py::array& filmIor, const py::array& thickness,
+                              const py::array& baseIor) {
+    const RealArray c = inputArray<double>(cosTheta, "cos_theta", 1), n0 = inputArray<double>(outsideIor, "outside_ior", 1);
+    const RealArray eta = inputArray<double>(filmIor, "film_ior", 1), d = inputArray<double>(thickness, "thickness_nm", 1);
+    const RealArray base = inputArray<double>(baseIor, "base_ior", 1);
+    const py::ssize_t n = c.shape(0);
+    if (n0.shape(0) != n || eta.shape(0) != n || d.shape(0) != n || base.shape(0) != n) fail("the inputs must have the same length");
+    checkPositive(n0, "outside_ior", false), checkPositive(eta, "film_ior", false), checkPositive(d, "thickness_nm", true);
+    checkPositive(base, "base_ior", false);
+    for (py::ssize_t i = 0; i < n; ++i)
+        if (!(c.data()[i] >= 0 && c.data()[i] <= 1)) fail("cos_theta[", i, "] = ", c.data()[i], " (expected in [0, 1])");
+    std::vector<double> out(size_t(3 * n));
+    {
+        py::gil_scoped_release release;
+        for (py::ssize_t i = 0; i < n; ++i) {
+            const dvec3 F = cyclesThinFilmRGB(n0.data()[i], eta.data()[i], base.data()[i], c.data()[i], d.data()[i]);
+            for (int k = 0; k < 3; ++k) out[size_t(3 * i + k)] = F[k];
+        }
+    }
+    return ownedArray(std::move(out), {n, 3});
+}
+
 /// (n,) complex indices of Gulbrandsen 2014 for reflectivity r and edge tint g.
 py::array_t<complexd> gulbrandsen(const py::array& r, const py::array& g) {
     const RealArray rr = inputArray<double>(r, "reflectivity", 1), gg = inputArray<double>(g, "edge_tint", 1);
@@ -78,6 +102,8 @@ py::array_t<double> deltaE2000(const py::array& test, const py::array& ref) {
 void bindThinFilmIndustry(py::module_& m) {
     m.def("thin_film_khr_rgb", &khrRgb, py::arg("cos_theta"), py::arg("outside_ior"), py::arg("film_ior"), py::arg("thickness_nm"),
           py::arg("base_f0"));
+    m.def("thin_film_cycles_4_2_rgb", &cyclesRgb, py::arg("cos_theta"), py::arg("outside_ior"), py::arg("film_ior"),
+          py::arg("thickness_nm"), py::arg("base_ior"));
     m.def("gulbrandsen_ior", &gulbrandsen, py::arg("reflectivity"), py::arg("edge_tint"));
     m.def("color_delta_e2000", &deltaE2000, py::arg("test"), py::arg("reference"));
 }

@@ -65,7 +65,15 @@ def belcour_barla_rgb(iris, base, film_ior, thickness, cos):
     return iris.thin_film.belcour_barla_rgb(film_ior, thickness[:, None], cos[None, :], 1.0, sub)
 
 
-MODELS = {"khr_iridescence": khr_rgb, "belcour_barla": belcour_barla_rgb, "point": point_rgb}
+def cycles_4_2_rgb(iris, base, film_ior, thickness, cos):
+    """Blender Cycles 4.2's thin film as its source writes it (spectral/thin_film_cycles.h). It has
+    no film on metals: None for a metallic base (the model does not apply)."""
+    if base[0] != "dielectric":
+        return None
+    return iris.thin_film.cycles_4_2_rgb(film_ior, thickness[:, None], cos[None, :], base[1])
+
+
+MODELS = {"khr_iridescence": khr_rgb, "belcour_barla": belcour_barla_rgb, "cycles_4_2": cycles_4_2_rgb, "point": point_rgb}
 
 
 def errors(iris, test, ref):

@@ -357,6 +357,8 @@ MaterialStress thinfilm() {
         {"truncated K=5 film 4", tf("conductor", 300.0f).str("phase_mode", "truncated").integer("bounces", 5)
                                      .f("film_ior", 4.0f)},
         {"belcour_barla rgb", tf("conductor", 1e4f).str("rgb_mode", "belcour_barla").f("film_ior", 2.5f)},
+        {"cycles_4_2 rgb d=20 rough", tf("dielectric", 20.0f).str("rgb_mode", "cycles_4_2").f("film_ior", 2.3f)
+                                          .f("alpha", 0.5f)},
         {"9-layer stack", many},
     });
     m.consistencyKnownIssue =

@@ -206,6 +206,23 @@ def khr_iridescence_rgb(film_ior, thickness_nm, cos_theta, base_f0, outside_ior=
     return _iris.thin_film_khr_rgb(*flat, f0_flat).reshape(shape + (3,))
 
 
+def cycles_4_2_rgb(film_ior, thickness_nm, cos_theta, base_ior=1.5, outside_ior=1.0) -> np.ndarray:
+    """Blender Cycles 4.2's thin-film Fresnel (the Principled BSDF's Thin Film) as its source writes
+    it (spectral/thin_film_cycles.h): Belcour & Barla with exact polarised dielectric Fresnel terms,
+    three harmonics of the Gaussian CIE fit in XYZ, the film index blended towards the outside
+    below 30 nm, XYZ multiplied by the Rec.709 white and clamped to [0, 1]. Dielectric bases only:
+    `base_ior` is a real index. Linear Rec.709, shape (..., 3) for the broadcast shape."""
+    args = {"cos_theta": real_array("cos_theta", cos_theta), "outside_ior": real_array("outside_ior", outside_ior),
+            "film_ior": real_array("film_ior", film_ior), "thickness_nm": real_array("thickness_nm", thickness_nm),
+            "base_ior": real_array("base_ior", base_ior)}
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in args.values()))
+    except ValueError:
+        raise _iris.Error(f"{', '.join(args)} do not broadcast together") from None
+    flat = [np.ascontiguousarray(np.broadcast_to(a, shape)).ravel() for a in args.values()]
+    return _iris.thin_film_cycles_4_2_rgb(*flat).reshape(shape + (3,))
+
+
 def gulbrandsen_ior(reflectivity, edge_tint) -> np.ndarray:
     """Gulbrandsen 2014 ("Artist Friendly Metallic Fresnel", JCGT 3(4)): the complex index n + ik
     of a metal whose normal-incidence reflectivity is `reflectivity` and edge tint `edge_tint`
