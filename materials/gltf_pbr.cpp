@@ -11,7 +11,8 @@ namespace iris::gltf {
 ThinFilmRGBMode parseThinFilmRGBMode(const std::string& name) {
     if (name == "point") return ThinFilmRGBMode::Exact;
     if (name == "khr_iridescence") return ThinFilmRGBMode::Khr;
-    fail("rgb_mode '", name, "' is not supported by gltf_pbr (supported: point, khr_iridescence)");
+    if (name == "cycles_4_2") return ThinFilmRGBMode::Cycles42;
+    fail("rgb_mode '", name, "' is not supported by gltf_pbr (supported: point, khr_iridescence, cycles_4_2)");
 }
 
 namespace {

@@ -18,7 +18,7 @@ namespace iris::gltf {
 /// wavelength (spectral mode) or at each channel wavelength (RGB mode), metals as complex indices
 /// by Gulbrandsen 2014 from the base colour and edge tint. Khr: the extension's own RGB
 /// approximation (spectral/thin_film_industry.h), only in RGB mode.
-enum class ThinFilmRGBMode { Exact, Khr };
+enum class ThinFilmRGBMode { Exact, Khr, Cycles42 };
 /// The `rgb_mode` names: "point" (Exact) and "khr_iridescence" (Khr). Throws iris::Error otherwise.
 ThinFilmRGBMode parseThinFilmRGBMode(const std::string& name);
 

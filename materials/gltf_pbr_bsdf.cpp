@@ -71,7 +71,10 @@ uint32_t PbrBSDF::flags() const {
 
 SampledSpectrum PbrBSDF::metalFresnel(float vh) const {
     SampledSpectrum F = schlick(p_.base, schlickWeight(vh));  // B.3.4 with f0 = baseColor
-    if (p_.iridescence > 0) F = F * (1.0f - p_.iridescence) + thinFilmFresnel(p_, vh, true) * p_.iridescence;
+    // Cycles 4.2 puts no film on metals (commit 17f2cdd1: dielectric bases only), so its reading
+    // leaves the metal's Fresnel term as it is.
+    const bool noFilm = p_.rgb && p_.mode == ThinFilmRGBMode::Cycles42;
+    if (p_.iridescence > 0 && !noFilm) F = F * (1.0f - p_.iridescence) + thinFilmFresnel(p_, vh, true) * p_.iridescence;
     return F;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "spectral/thin_film_cycles.h"
 #include "spectral/thin_film_industry.h"
 
 namespace iris::gltf {
@@ -25,6 +26,15 @@ SampledSpectrum thinFilmFresnel(const PbrPoint& p, float cosTheta1, bool metal) 
         for (int c = 0; c < 3; ++c) f0[c] = metal ? double(p.baseRGB[c]) : dielectricBaseF0(p, p.specularColorRGB[c]);
         const dvec3 rgb = khrIridescentFresnel(1.0, p.filmIor, f0, p.thicknessNm, cosTheta1);
         for (int c = 0; c < 3; ++c) F[c] = float(rgb[c]);
+        return F;
+    }
+    if (p.rgb && p.mode == ThinFilmRGBMode::Cycles42 && !metal) {
+        // Cycles 4.2's film on the dielectric base (spectral/thin_film_cycles.h), with the base index
+        // recovered from this channel's effective F0 as the exact reading recovers it.
+        for (int c = 0; c < 3; ++c) {
+            const double baseIor = fresnel0ToIor(std::min(dielectricBaseF0(p, p.specularColor[c]), 0.9999));
+            F[c] = float(cyclesThinFilmRGB(1.0, p.filmIor, baseIor, cosTheta1, p.thicknessNm)[c]);
+        }
         return F;
     }
     for (int i = 0; i < n; ++i) {

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "materials/gltf_pbr_terms.h"
+#include "spectral/thin_film_cycles.h"
 #include "spectral/thin_film_industry.h"
 #include "tests/support/bsdf_test_util.h"
 
@@ -137,6 +138,37 @@ TEST(GltfPbr, KhrReadingIsTheReadmesIridescentFresnel) {
         }
     }
     EXPECT_GT(differs, 0.01) << "the two readings must differ (else the mode is not switched)";
+}
+
+TEST(GltfPbr, Cycles42ReadingIsBlendersFilmOnDielectricsAndNoneOnMetals) {
+    // rgb_mode cycles_4_2: the dielectric base's film is cyclesThinFilmRGB(1, ior_film, ior_base, v·h, d)
+    // (ior_base from F0 = ((ior − 1)/(ior + 1))², specular 1, white specular colour: the ior itself);
+    // Cycles 4.2 has no film on metals, so a metal keeps its Schlick term B.3.4.
+    const vec3 C(0.95f, 0.64f, 0.54f);
+    const double ior = 1.5, d = 400.0, filmIor = 1.3;
+    auto film = [&](float metallic, const char* mode) {
+        return makeBSDF("gltf_pbr", {{"base_color", RGBValue{C}}, {"metallic", metallic}, {"roughness", 0.4f}, {"ior", float(ior)},
+                                     {"iridescence", 1.0f}, {"iridescence_thickness", float(d)}, {"iridescence_ior", float(filmIor)},
+                                     {"rgb_mode", std::string(mode)}},
+                        SampledWavelengths::rgb(defaultChannelWavelengths()));
+    };
+    auto dielectric = film(0.0f, "cycles_4_2"), metal = film(1.0f, "cycles_4_2"), exact = film(0.0f, "point");
+    double differs = 0;
+    for (const Pair& p : kPairs) {
+        const double dv = specD(0.16, p.h.z) * specV(0.16, p.wi.z, p.wo.z);
+        const dvec3 F = cyclesThinFilmRGB(1.0, filmIor, ior, p.vh, d);
+        const SampledSpectrum fm = metal.bsdf->eval(p.wo, p.wi, TransportMode::Radiance);
+        const SampledSpectrum fd = dielectric.bsdf->eval(p.wo, p.wi, TransportMode::Radiance);
+        const SampledSpectrum fe = exact.bsdf->eval(p.wo, p.wi, TransportMode::Radiance);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(fm[c], (C[c] + (1 - C[c]) * std::pow(1 - p.vh, 5)) * dv, 2e-5 * fm[c] + 1e-7) << c;
+            // The specular part is F·D·V; the diffuse part (1 − F)·C/π is checked by the furnace tests.
+            const double diffuse = (1 - F[c]) * C[c] / M_PI;
+            EXPECT_NEAR(fd[c], F[c] * dv + diffuse, 2e-4 * fd[c]) << c;
+            differs = std::max(differs, std::abs(double(fe[c]) - fd[c]) / fd[c]);
+        }
+    }
+    EXPECT_GT(differs, 0.01) << "the Cycles and the exact readings must differ (else the mode is not switched)";
 }
 
 TEST(GltfPbr, BackFacesAreMirroredOrCulled) {
