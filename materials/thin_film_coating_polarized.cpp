@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "spectral/thin_film_airy.h"
 
 namespace iris {
 
@@ -33,6 +34,11 @@ FilmPolarization clamped(FilmPolarization p) {
 
 FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool below) const {
     if (rgb_ || belcourBarla_) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+    if (airy_) {  // exact single film: the closed form from the hoisted constants, as exactAt
+        const AiryAngle angle = airyAngle(cosTheta, below ? substrate_[k].real() : extIor_);
+        FilmPolarization p;
+        if (airySingleFilmPolarizationAt(angle, airyFilm(k), airySubstrate(k, below), p)) return clamped(p);
+    }
     const int stride = 1 + nExtra_;
     Layer rows[9];
     for (int j = 0; j < stride; ++j) {
