@@ -112,6 +112,8 @@ public:
     /// Mueller matrices at entry k, for light at cosθ from the exterior or (below) the substrate;
     /// the powers equal stackRT / stackRTFromBelow's (materials/thin_film_coating_polarized.cpp).
     FilmPolarization polarization(int k, double cosTheta, bool below = false) const;
+    /// polarization(k, cosTheta, below).power without the cross terms: stackRT / stackRTFromBelow.
+    ThinFilmStackResult polarizationPowers(int k, double cosTheta, bool below = false) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }

@@ -13,14 +13,19 @@ namespace iris {
 
 namespace {
 
-/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]) and the cross terms
-/// kept within √(P_s P_p) (their magnitude for a coherent sum).
-FilmPolarization clamped(FilmPolarization p) {
-    ThinFilmStackResult& r = p.power;
+/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]).
+ThinFilmStackResult clampedPowers(ThinFilmStackResult r) {
     r.Rs = std::clamp(r.Rs, 0.0, 1.0);
     r.Rp = std::clamp(r.Rp, 0.0, 1.0);
     r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
     r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
+    return r;
+}
+
+/// clampedPowers, and the cross terms kept within √(P_s P_p) (their magnitude for a coherent sum).
+FilmPolarization clamped(FilmPolarization p) {
+    p.power = clampedPowers(p.power);
+    const ThinFilmStackResult& r = p.power;
     auto bound = [](complexd c, double limit) {
         const double m = std::abs(c);
         return m > limit && m > 0 ? c * (limit / m) : c;
@@ -30,10 +35,19 @@ FilmPolarization clamped(FilmPolarization p) {
     return p;
 }
 
+void requireSpectral(bool rgb) {
+    if (rgb) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+}
+
 }  // namespace
 
+ThinFilmStackResult ThinFilmCoating::polarizationPowers(int k, double cosTheta, bool below) const {
+    requireSpectral(rgb_ || belcourBarla_);
+    return clampedPowers(below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta));
+}
+
 FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool below) const {
-    if (rgb_ || belcourBarla_) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+    requireSpectral(rgb_ || belcourBarla_);
     if (airy_) {  // exact single film: the closed form from the hoisted constants, as exactAt
         const AiryAngle angle = airyAngle(cosTheta, below ? substrate_[k].real() : extIor_);
         FilmPolarization p;

@@ -21,12 +21,10 @@ complexd coherentCross(double Ps, double Pp, complexd as, complexd ap) {
     return std::sqrt(std::max(0.0, Ps * Pp)) * (z / m);
 }
 
-/// z/|z| in real arithmetic; false when |z| is 0 or not finite.
-bool unitPhase(complexd z, complexd& unit) {
+/// z/|z| in real arithmetic, 0 when |z| underflows to 0 (z is finite here).
+complexd unitPhase(complexd z) {
     const double m = std::sqrt(airy_detail::cnorm(z));
-    if (!(m > 0) || !std::isfinite(m)) return false;
-    unit = complexd(z.real() / m, z.imag() / m);
-    return true;
+    return m > 0 ? complexd(z.real() / m, z.imag() / m) : complexd(0.0, 0.0);
 }
 
 /// s and p interface data of one film (docs/thin_film.md §2).
@@ -119,7 +117,7 @@ bool airySingleFilmPolarizationAt(const AiryAngle& angle, const AiryFilmConstant
         // r = num/den = num·conj(den)/|den|²; the phase of t ∝ y1/den is that of y1·conj(den).
         const complexd z = cmul(t.num[k], std::conj(t.den[k]));
         r[k] = complexd(z.real() / t.dd[k], z.imag() / t.dd[k]);
-        if (!unitPhase(cmul(t.y1[k], std::conj(t.den[k])), phaseT[k])) return false;
+        phaseT[k] = unitPhase(cmul(t.y1[k], std::conj(t.den[k])));  // 0 only where t ≈ 0 (T ≈ 0)
     }
     out.power = t.clampedPowers();
     out.crossR = cmul(r[0], std::conj(r[1]));  // r_s r_p* (the interface layout's C + iD)

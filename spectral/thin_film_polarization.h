@@ -39,7 +39,7 @@ FilmPolarization stackPolarization(double lambdaNm, double cosThetaIncident, dou
 /// airySingleFilmTerms, the spectral mode's kernel): its powers (clamped as airySingleFilmFastAt
 /// clamps them), C + iD = r_s r_p* with r = num/den, and √(T_s T_p) times the phase of t_s t_p*,
 /// t = 4 y0 y1 e^{iδ}/den, whose factor 4 y0 e^{iδ} (y0 > 0 real, δ the same for s and p) drops
-/// out of the phase. False where the kernel declines (the caller then uses stackPolarization,
+/// out of the phase. Declines exactly where airySingleFilmFastAt does (the caller then uses stackPolarization,
 /// the transfer matrix, as airySingleFilm falls back to thinFilmStackRT).
 bool airySingleFilmPolarizationAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
                                   FilmPolarization& out);
