@@ -21,6 +21,11 @@ Mueller4f rotatedElement(float theta, const Mueller4f& m) {
 
 MuellerSpectrum rotateBases(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out) {
     if (m.depolarizing()) return m;  // only (0, 0), which no rotation touches
+    return m.interfaceLayout() ? rotatedInterface(m, in, out) : rotateBasesDense(m, in, out);
+}
+
+MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out) {
+    if (m.depolarizing()) return m;
     MuellerSpectrum r = m;
     // R_out · M (rotator rows 1 and 2: [c, s] and [−s, c]; Mitsuba 3 mueller::rotate_mueller_basis).
     for (int j = 0; j < 4; ++j) {
@@ -34,6 +39,32 @@ MuellerSpectrum rotateBases(const MuellerSpectrum& m, const BasisRotation& in, c
         r(i, 1) = a * in.c2 + b * in.s2;
         r(i, 2) = b * in.c2 - a * in.s2;
     }
+    return r;
+}
+
+MuellerSpectrum rotatedInterface(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out) {
+    // rotateBasesDense's operations on [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]]
+    // without the products with its zeros (x·c + 0·s = x·c), in the same order, so that every
+    // entry has the dense product's value (up to the sign of a zero).
+    const SampledSpectrum &A = m(0, 0), &B = m(0, 1), &C = m(2, 2), &mD = m(2, 3), &D = m(3, 2);
+    // R_out · M: rows 1 and 2 become (a c + b s, b c − a s) of their old values (Collett ch. 5 eq. 43).
+    const SampledSpectrum r11 = A * out.c2, r12 = C * out.s2, r21 = -(A * out.s2), r22 = C * out.c2;
+    MuellerSpectrum r(m.size());
+    r(0, 0) = A;
+    r(1, 0) = B * out.c2;
+    r(2, 0) = -(B * out.s2);
+    r(1, 3) = mD * out.s2;
+    r(2, 3) = mD * out.c2;
+    r(3, 3) = C;
+    // (R_out M) · R_inᵀ: columns 1 and 2 become (a c + b s, b c − a s) of their old values.
+    r(0, 1) = B * in.c2;
+    r(0, 2) = -(B * in.s2);
+    r(1, 1) = r11 * in.c2 + r12 * in.s2;
+    r(1, 2) = r12 * in.c2 - r11 * in.s2;
+    r(2, 1) = r21 * in.c2 + r22 * in.s2;
+    r(2, 2) = r22 * in.c2 - r21 * in.s2;
+    r(3, 1) = D * in.s2;
+    r(3, 2) = D * in.c2;
     return r;
 }
 
