@@ -49,13 +49,13 @@ MuellerSpectrum rotatedInterface(const MuellerSpectrum& m, const BasisRotation& 
     const SampledSpectrum &A = m(0, 0), &B = m(0, 1), &C = m(2, 2), &mD = m(2, 3), &D = m(3, 2);
     // R_out · M: rows 1 and 2 become (a c + b s, b c − a s) of their old values (Collett ch. 5 eq. 43).
     const SampledSpectrum r11 = A * out.c2, r12 = C * out.s2, r21 = -(A * out.s2), r22 = C * out.c2;
-    MuellerSpectrum r(m.size());
-    r(0, 0) = A;
+    // Rows 0 and 3 of R_out M are M's; (0, 0), (0, 3), (3, 0) and (3, 3) stay M's (A, 0, 0, C): a copy
+    // of m for them is cheaper than zero-filling a new matrix.
+    MuellerSpectrum r = m;
     r(1, 0) = B * out.c2;
     r(2, 0) = -(B * out.s2);
     r(1, 3) = mD * out.s2;
     r(2, 3) = mD * out.c2;
-    r(3, 3) = C;
     // (R_out M) · R_inᵀ: columns 1 and 2 become (a c + b s, b c − a s) of their old values.
     r(0, 1) = B * in.c2;
     r(0, 2) = -(B * in.s2);
