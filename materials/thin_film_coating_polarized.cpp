@@ -27,7 +27,7 @@ FilmPolarization clamped(FilmPolarization p) {
     p.power = clampedPowers(p.power);
     const ThinFilmStackResult& r = p.power;
     auto bound = [](complexd c, double limit) {
-        const double m = std::abs(c);
+        const double m = std::sqrt(std::norm(c));  // |c| without hypot's overflow guard: |c| ≤ ~1 here
         return m > limit && m > 0 ? c * (limit / m) : c;
     };
     p.crossR = bound(p.crossR, std::sqrt(r.Rs * r.Rp));
