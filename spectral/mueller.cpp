@@ -44,27 +44,32 @@ MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& 
 
 MuellerSpectrum rotatedInterface(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out) {
     // rotateBasesDense's operations on [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]]
-    // without the products with its zeros (x·c + 0·s = x·c), in the same order, so that every
-    // entry has the dense product's value (up to the sign of a zero).
-    const SampledSpectrum &A = m(0, 0), &B = m(0, 1), &C = m(2, 2), &mD = m(2, 3), &D = m(3, 2);
-    // R_out · M: rows 1 and 2 become (a c + b s, b c − a s) of their old values (Collett ch. 5 eq. 43).
-    const SampledSpectrum r11 = A * out.c2, r12 = C * out.s2, r21 = -(A * out.s2), r22 = C * out.c2;
-    // Rows 0 and 3 of R_out M are M's; (0, 0), (0, 3), (3, 0) and (3, 3) stay M's (A, 0, 0, C): a copy
-    // of m for them is cheaper than zero-filling a new matrix.
+    // without the products with its zeros (x·c + 0·s = x·c), in the same order and float lane by
+    // lane, so that every entry has the dense product's value (up to the sign of a zero). Rows 0
+    // and 3 of R_out M are M's, and (0, 0), (0, 3), (3, 0), (3, 3) stay M's (A, 0, 0, C): the
+    // result starts as a copy of m (cheaper than zero-filling 16 spectra).
     MuellerSpectrum r = m;
-    r(1, 0) = B * out.c2;
-    r(2, 0) = -(B * out.s2);
-    r(1, 3) = mD * out.s2;
-    r(2, 3) = mD * out.c2;
-    // (R_out M) · R_inᵀ: columns 1 and 2 become (a c + b s, b c − a s) of their old values.
-    r(0, 1) = B * in.c2;
-    r(0, 2) = -(B * in.s2);
-    r(1, 1) = r11 * in.c2 + r12 * in.s2;
-    r(1, 2) = r12 * in.c2 - r11 * in.s2;
-    r(2, 1) = r21 * in.c2 + r22 * in.s2;
-    r(2, 2) = r22 * in.c2 - r21 * in.s2;
-    r(3, 1) = D * in.s2;
-    r(3, 2) = D * in.c2;
+    SampledSpectrum &r01 = r(0, 1), &r02 = r(0, 2), &r10 = r(1, 0), &r11 = r(1, 1), &r12 = r(1, 2), &r13 = r(1, 3);
+    SampledSpectrum &r20 = r(2, 0), &r21 = r(2, 1), &r22 = r(2, 2), &r23 = r(2, 3), &r31 = r(3, 1), &r32 = r(3, 2);
+    const float oc = out.c2, os = out.s2, ic = in.c2, is = in.s2;
+    for (int j = 0; j < m.size(); ++j) {
+        const float A = m(0, 0)[j], B = m(0, 1)[j], C = m(2, 2)[j], mD = m(2, 3)[j], D = m(3, 2)[j];
+        // R_out · M: rows 1 and 2 become (a c + b s, b c − a s) of their old values (Collett ch. 5 eq. 43).
+        const float a1 = A * oc, c1 = C * os, a2 = -(A * os), c2 = C * oc;
+        r10[j] = B * oc;
+        r20[j] = -(B * os);
+        r13[j] = mD * os;
+        r23[j] = mD * oc;
+        // (R_out M) · R_inᵀ: columns 1 and 2 become (a c + b s, b c − a s) of their old values.
+        r01[j] = B * ic;
+        r02[j] = -(B * is);
+        r11[j] = a1 * ic + c1 * is;
+        r12[j] = c1 * ic - a1 * is;
+        r21[j] = a2 * ic + c2 * is;
+        r22[j] = c2 * ic - a2 * is;
+        r31[j] = D * is;
+        r32[j] = D * ic;
+    }
     return r;
 }
 
