@@ -24,7 +24,8 @@ void directLightStokes(const Scene& scene, const SurfaceInteraction& si, const F
     if (!s) return;
     const vec3 wi = frame.toLocal(s->ls.wi);
     if (strictNormals && !sidesAgree(s->ls.wi, si.ng, wi.z)) return;
-    const MuellerSpectrum M = bsdf.evalMueller(wo, wi, TransportMode::Radiance) * std::abs(wi.z);
+    MuellerSpectrum M = bsdf.evalMueller(wo, wi, TransportMode::Radiance);
+    M *= std::abs(wi.z);  // in place: no copy of the matrix
     if (M(0, 0).isBlack()) return;
     ++stats.rays;
     const LightSample& ls = s->ls;
@@ -83,13 +84,14 @@ void PathIntegrator::LiStokes(const Scene& scene, const Ray& cameraRay, SampledW
 
         const float uc = sampler.get1D();
         const vec2 u = sampler.get2D();
-        const auto ps = bsdf->sampleMueller(wo, uc, u, TransportMode::Radiance);
+        auto ps = bsdf->sampleMueller(wo, uc, u, TransportMode::Radiance);
         if (!ps || ps->s.pdf <= 0 || ps->s.f.isBlack()) break;
         const BSDFSample& bs = ps->s;
         const bool passThrough = bs.isNull();
         const vec3 wiWorld = passThrough ? glm::normalize(ray.d) : glm::normalize(frame.toWorld(bs.wi));
         if (params_.strictNormals && !passThrough && !sidesAgree(wiWorld, si.ng, bs.wi.z)) break;
-        T.apply(ps->M * (std::abs(bs.wi.z) / bs.pdf), frame.toWorld(stokesBasis(-bs.wi)));
+        ps->M *= std::abs(bs.wi.z) / bs.pdf;  // in place: no copy of the matrix
+        T.apply(ps->M, frame.toWorld(stokesBasis(-bs.wi)));
         specularBounce = bs.isSpecular();
         bsdfPdf = bs.pdf;
         if (bs.isTransmission()) etaScale *= sqr(bs.eta);

@@ -14,11 +14,13 @@ void StokesThroughput::changeBasis(const vec3& forward, const vec3& next) {
     const mueller::BasisRotation R = stokesBasisRotation(forward, next, basis_);
     basis_ = next;
     if (R.c2 == 1.0f && R.s2 == 0.0f) return;
-    for (int k = 0; k < rows_; ++k) {
-        const SampledSpectrum a = r_[k][1], b = r_[k][2];
-        r_[k][1] = a * R.c2 - b * R.s2;
-        r_[k][2] = a * R.s2 + b * R.c2;
-    }
+    const int n = r_[0][0].size();
+    for (int k = 0; k < rows_; ++k)  // lane by lane: the spectrum operations' float products, no temporaries
+        for (int l = 0; l < n; ++l) {
+            const float a = r_[k][1][l], b = r_[k][2][l];
+            r_[k][1][l] = a * R.c2 - b * R.s2;
+            r_[k][2][l] = a * R.s2 + b * R.c2;
+        }
 }
 
 void StokesThroughput::apply(const MuellerSpectrum& M, const vec3& inputBasis) {
@@ -30,14 +32,17 @@ void StokesThroughput::apply(const MuellerSpectrum& M, const vec3& inputBasis) {
         }
         return;
     }
-    for (int k = 0; k < rows_; ++k) {
-        SampledSpectrum out[4];
-        for (int j = 0; j < 4; ++j) {
-            out[j] = r_[k][0] * M(0, j);
-            for (int i = 1; i < 4; ++i) out[j] += r_[k][i] * M(i, j);
+    // Row times matrix lane by lane, summed over i = 0..3 in order (the spectrum operations' values).
+    const int n = r_[0][0].size();
+    for (int k = 0; k < rows_; ++k)
+        for (int l = 0; l < n; ++l) {
+            const float x[4] = {r_[k][0][l], r_[k][1][l], r_[k][2][l], r_[k][3][l]};
+            for (int j = 0; j < 4; ++j) {
+                float v = x[0] * M(0, j)[l];
+                for (int i = 1; i < 4; ++i) v += x[i] * M(i, j)[l];
+                r_[k][j][l] = v;
+            }
         }
-        for (int j = 0; j < 4; ++j) r_[k][j] = out[j];
-    }
 }
 
 void StokesThroughput::operator*=(float s) {

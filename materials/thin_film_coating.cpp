@@ -243,12 +243,7 @@ ThinFilmStackResult ThinFilmCoating::stackRTFromBelow(int k, double cosTheta) co
 /// airySingleFilm. exactAll is the same over all entries at once.
 inline ThinFilmStackResult ThinFilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     ThinFilmStackResult r;
-    const AiryFilmConstants film{complexd(airyArray(kN1Re)[k], airyArray(kN1Im)[k]),
-                                 complexd(airyArray(kInv1Re)[k], airyArray(kInv1Im)[k]), airyArray(kK0d)[k]};
-    const int sub = below ? kExtRe : kN2Re;  // the four substrate arrays follow each other
-    const SquaredIndex substrate{complexd(airyArray(AiryArray(sub))[k], airyArray(AiryArray(sub + 1))[k]),
-                                 complexd(airyArray(AiryArray(sub + 2))[k], airyArray(AiryArray(sub + 3))[k])};
-    if (airySingleFilmFastAt(angle, film, substrate, r)) {
+    if (airySingleFilmFastAt(angle, airyFilm(k), airySubstrate(k, below), r)) {
         // clampEnergy's result: the kernel already returns Rs, Rp ∈ [0, 1] and Ts, Tp ∈ [0, 1],
         // so only T ≤ 1 − R remains (this runs per wavelength per evaluation).
         r.Ts = std::min(r.Ts, 1.0 - r.Rs);

@@ -114,6 +114,8 @@ public:
     /// Mueller matrices at entry k, for light at cosθ from the exterior or (below) the substrate;
     /// the powers equal stackRT / stackRTFromBelow's (materials/thin_film_coating_polarized.cpp).
     FilmPolarization polarization(int k, double cosTheta, bool below = false) const;
+    /// polarization(k, cosTheta, below).power without the cross terms: stackRT / stackRTFromBelow.
+    ThinFilmStackResult polarizationPowers(int k, double cosTheta, bool below = false) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }
@@ -145,6 +147,17 @@ private:
     const double* airy_ = nullptr;
     int airyStride_ = 0;  // padded entry count: array a starts at airy_ + a·airyStride_
     const double* airyArray(AiryArray a) const { return airy_ + a * airyStride_; }
+    /// The hoisted Airy constants of entry k: the film's, and the substrate's (the exterior's when
+    /// lit from below: the four substrate arrays follow each other).
+    AiryFilmConstants airyFilm(int k) const {
+        return {complexd(airyArray(kN1Re)[k], airyArray(kN1Im)[k]), complexd(airyArray(kInv1Re)[k], airyArray(kInv1Im)[k]),
+                airyArray(kK0d)[k]};
+    }
+    SquaredIndex airySubstrate(int k, bool below) const {
+        const int sub = below ? kExtRe : kN2Re;
+        return {complexd(airyArray(AiryArray(sub))[k], airyArray(AiryArray(sub + 1))[k]),
+                complexd(airyArray(AiryArray(sub + 2))[k], airyArray(AiryArray(sub + 3))[k])};
+    }
     /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
     void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
     const ThinFilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths

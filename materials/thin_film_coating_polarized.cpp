@@ -7,21 +7,27 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "spectral/thin_film_airy.h"
 
 namespace iris {
 
 namespace {
 
-/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]) and the cross terms
-/// kept within √(P_s P_p) (their magnitude for a coherent sum).
-FilmPolarization clamped(FilmPolarization p) {
-    ThinFilmStackResult& r = p.power;
+/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]).
+ThinFilmStackResult clampedPowers(ThinFilmStackResult r) {
     r.Rs = std::clamp(r.Rs, 0.0, 1.0);
     r.Rp = std::clamp(r.Rp, 0.0, 1.0);
     r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
     r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
+    return r;
+}
+
+/// clampedPowers, and the cross terms kept within √(P_s P_p) (their magnitude for a coherent sum).
+FilmPolarization clamped(FilmPolarization p) {
+    p.power = clampedPowers(p.power);
+    const ThinFilmStackResult& r = p.power;
     auto bound = [](complexd c, double limit) {
-        const double m = std::abs(c);
+        const double m = std::sqrt(std::norm(c));  // |c| without hypot's overflow guard: |c| ≤ ~1 here
         return m > limit && m > 0 ? c * (limit / m) : c;
     };
     p.crossR = bound(p.crossR, std::sqrt(r.Rs * r.Rp));
@@ -29,10 +35,24 @@ FilmPolarization clamped(FilmPolarization p) {
     return p;
 }
 
+void requireSpectral(bool rgb) {
+    if (rgb) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+}
+
 }  // namespace
 
+ThinFilmStackResult ThinFilmCoating::polarizationPowers(int k, double cosTheta, bool below) const {
+    requireSpectral(rgb_ || belcourBarla_);
+    return clampedPowers(below ? stackRTFromBelow(k, cosTheta) : stackRT(k, cosTheta));
+}
+
 FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool below) const {
-    if (rgb_ || belcourBarla_) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
+    requireSpectral(rgb_ || belcourBarla_);
+    if (airy_) {  // exact single film: the closed form from the hoisted constants, as exactAt
+        const AiryAngle angle = airyAngle(cosTheta, below ? substrate_[k].real() : extIor_);
+        FilmPolarization p;
+        if (airySingleFilmPolarizationAt(angle, airyFilm(k), airySubstrate(k, below), p)) return clamped(p);
+    }
     const int stride = 1 + nExtra_;
     Layer rows[9];
     for (int j = 0; j < stride; ++j) {

@@ -47,7 +47,7 @@ MuellerSpectrum coatingDiffuseMueller(const ThinFilmCoating& c, const SampledSpe
     const int n = c.size();
     MuellerSpectrum M(n);
     for (int k = 0; k < n; ++k) {
-        const ThinFilmStackResult in = c.polarization(k, wi.z).power, out = c.polarization(k, wo.z).power;
+        const ThinFilmStackResult in = c.polarizationPowers(k, wi.z), out = c.polarizationPowers(k, wo.z);
         // T is reciprocal per polarization: the exit through the stack at θo has the T_s, T_p of the
         // entry at θo (Born & Wolf §1.5; Mitsuba 3 pplastic.cpp: Ti · depolarizer · To).
         const double ai = 0.5 * (in.Ts + in.Tp), bi = 0.5 * (in.Ts - in.Tp);

@@ -9,7 +9,9 @@
 // (in its basis).
 //
 // A matrix is 16 SampledSpectrum entries, row-major; `depolarizing` marks the matrices whose only
-// non-zero entry is (0, 0) (Mitsuba's depolarizer), which the integrators multiply in one lane op.
+// non-zero entry is (0, 0) (Mitsuba's depolarizer), which the integrators multiply in one lane op;
+// `interfaceLayout` the matrices of mueller::interfaceMueller's layout, whose basis rotation
+// (mueller::rotateBases) skips the products with their eight zero entries.
 #pragma once
 
 #include <cmath>
@@ -44,9 +46,11 @@ public:
     }
 
     int size() const { return e_[0].size(); }
-    /// Entry (i, j). A depolarizer stores only (0, 0): read the others after expanded().
+    /// Entry (i, j). A depolarizer stores only (0, 0): read the others after expanded(). A write
+    /// access may break the interface layout: it clears interfaceLayout().
     SampledSpectrum& operator()(int i, int j) {
         assert(!depolarizing_ || (i == 0 && j == 0));
+        interface_ = false;
         return e_[4 * i + j];
     }
     const SampledSpectrum& operator()(int i, int j) const {
@@ -55,6 +59,9 @@ public:
     }
     /// True when only entry (0, 0) may be non-zero (set by depolarizer(); the products keep it).
     bool depolarizing() const { return depolarizing_; }
+    /// True when the matrix has the layout [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]]
+    /// (set by interface(); scaling and sums of two such matrices keep it).
+    bool interfaceLayout() const { return interface_; }
     /// The same matrix with all 16 entries stored.
     MuellerSpectrum expanded() const {
         if (!depolarizing_) return *this;
@@ -68,6 +75,18 @@ public:
         MuellerSpectrum m(Uninitialized{});
         m.e_[0] = v;
         m.depolarizing_ = true;
+        return m;
+    }
+    /// The interface layout from its four distinct entries (mueller::interfaceMueller).
+    static MuellerSpectrum interface(const SampledSpectrum& A, const SampledSpectrum& B, const SampledSpectrum& C,
+                                     const SampledSpectrum& D) {
+        MuellerSpectrum m(A.size());
+        m(0, 0) = m(1, 1) = A;
+        m(0, 1) = m(1, 0) = B;
+        m(2, 2) = m(3, 3) = C;
+        m(2, 3) = -D;
+        m(3, 2) = D;
+        m.interface_ = true;
         return m;
     }
     /// Mitsuba 3 mueller::absorber: v times the identity (a non-polarizing attenuation).
@@ -90,6 +109,7 @@ public:
         if (depolarizing_) *this = expanded();
         const MuellerSpectrum b = o.expanded();
         for (int k = 0; k < 16; ++k) e_[k] += b.e_[k];
+        interface_ = interface_ && b.interface_;
         return *this;
     }
     friend MuellerSpectrum operator*(MuellerSpectrum m, const SampledSpectrum& v) { return m *= v; }
@@ -130,6 +150,7 @@ private:
     int used() const { return depolarizing_ ? 1 : 16; }
     void copyFrom(const MuellerSpectrum& o) {
         depolarizing_ = o.depolarizing_;
+        interface_ = o.interface_;
         const int n = o.size();
         for (int k = 0; k < o.used(); ++k) {
             const float* src = o.e_[k].lanes();
@@ -139,6 +160,7 @@ private:
 
     SampledSpectrum e_[16];
     bool depolarizing_ = false;
+    bool interface_ = false;
 };
 
 /// A real 4×4 matrix applied to every lane (the elementary optical elements below).
@@ -206,8 +228,13 @@ Mueller4f rotatedElement(float theta, const Mueller4f& m);
 Mueller4f multiply(const Mueller4f& a, const Mueller4f& b);
 
 /// R_out · M · R_inᵀ: M re-expressed from new input and output bases (Mitsuba 3
-/// mueller::rotate_mueller_basis, with the rotations of rotate_stokes_basis).
+/// mueller::rotate_mueller_basis, with the rotations of rotate_stokes_basis). A matrix with the
+/// interface layout takes rotatedInterface, the same operations without the products with zeros.
 MuellerSpectrum rotateBases(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out);
+/// The dense form of rotateBases for any matrix (what rotatedInterface is tested against).
+MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out);
+/// rotateBases of a matrix with the interface layout (m.interfaceLayout()).
+MuellerSpectrum rotatedInterface(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out);
 
 /// The Mueller matrix of a specular interface (reflection or transmission) in the frame whose
 /// basis vector x is the s axis (perpendicular to the plane of incidence) on both sides, from
@@ -217,13 +244,7 @@ MuellerSpectrum rotateBases(const MuellerSpectrum& m, const BasisRotation& in, c
 ///   [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]].
 inline MuellerSpectrum interfaceMueller(const SampledSpectrum& A, const SampledSpectrum& B, const SampledSpectrum& C,
                                         const SampledSpectrum& D) {
-    MuellerSpectrum m(A.size());
-    m(0, 0) = m(1, 1) = A;
-    m(0, 1) = m(1, 0) = B;
-    m(2, 2) = m(3, 3) = C;
-    m(2, 3) = -D;
-    m(3, 2) = D;
-    return m;
+    return MuellerSpectrum::interface(A, B, C, D);
 }
 
 }  // namespace mueller

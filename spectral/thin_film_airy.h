@@ -87,10 +87,24 @@ inline AiryAngle airyAngle(double cosThetaIncident, double incidentIor) {
     return {s * s, q0, q0 / (incidentIor * incidentIor)};
 }
 
-/// airySingleFilmFast with the angle terms precomputed (ThinFilmCoating: once per evaluation for all
-/// wavelengths).
-inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
-                                 ThinFilmStackResult& out) {
+/// The fraction of the exact Airy sum for s (index 0) and p (index 1) as airySingleFilmFastAt
+/// forms it: r = num/den, t = 4 y0 y1 e^{iδ}/den (y1 the film's tilted admittance), and the
+/// unclamped powers R = |num|²/|den|², T = 16 y0 Re(y2) |y1|² |e^{2iδ}| / |den|². The polarized
+/// mode's cross terms come from num, den and y1 (airySingleFilmPolarizationAt,
+/// spectral/thin_film_polarization.h).
+struct AiryFilmTerms {
+    complexd num[2], den[2], y1[2];
+    double dd[2];  // |den|²
+    double R[2], T[2];
+    /// The powers with the reference's clamps (airySingleFilmReference: combine with clampR, transmittance()).
+    ThinFilmStackResult clampedPowers() const {
+        return {std::min(1.0, R[0]), std::min(1.0, R[1]), std::clamp(T[0], 0.0, 1.0), std::clamp(T[1], 0.0, 1.0)};
+    }
+};
+
+/// airySingleFilmFastAt's kernel without the clamps; false where it declines.
+[[gnu::always_inline]] inline bool airySingleFilmTerms(const AiryAngle& angle, const AiryFilmConstants& film,
+                                                       const SquaredIndex& substrate, AiryFilmTerms& out) {
     using namespace airy_detail;
     const double s2 = angle.s2;
     // Normal wave numbers q_j = sqrt(ñ_j² − s²), Im q_j ≥ 0 (Born & Wolf §1.5, ch. 14).
@@ -113,7 +127,6 @@ inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants
     const double y0[2] = {angle.y0s, angle.y0p};
     const complexd y1[2] = {q1, cmul(q1, film.invN1sq)};
     const complexd y2[2] = {q2, cmul(q2, substrate.inv)};
-    double R[2], T[2];
     for (int k = 0; k < 2; ++k) {
         // With r01 = (y0 − y1)/(y0 + y1), r12 = (y1 − y2)/(y1 + y2) (Born & Wolf §1.5.2, admittance
         // form), the Airy sum multiplied through by (y0 + y1)(y1 + y2) and expanded in P and M:
@@ -127,16 +140,25 @@ inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants
         const complexd den = cmul(cmul(y1[k], y0[k] + y2[k]), P) + cmul(y02 + y1sq, M);
         const double dd = cnorm(den);
         if (!(dd > 1e-250)) return false;  // q1 = 0 exactly (or y0 = y1 = 0): the caller uses the TMM
-        R[k] = cnorm(num) / dd;
+        out.R[k] = cnorm(num) / dd;
         // T = Re(y2)/y0 |t|² (Macleod ch. 2) = 16 y0 Re(y2) |y1|² |E| / |den|², since |e^{iδ}|² = |E|.
-        T[k] = 16.0 * y0[k] * y2[k].real() * cnorm(y1[k]) * absE / dd;
-        if (!std::isfinite(R[k]) || !std::isfinite(T[k])) return false;
+        out.T[k] = 16.0 * y0[k] * y2[k].real() * cnorm(y1[k]) * absE / dd;
+        if (!std::isfinite(out.R[k]) || !std::isfinite(out.T[k])) return false;
+        out.num[k] = num;
+        out.den[k] = den;
+        out.y1[k] = y1[k];
+        out.dd[k] = dd;
     }
-    // Same clamps as the reference (combine with clampR, transmittance()).
-    out.Rs = std::min(1.0, R[0]);
-    out.Rp = std::min(1.0, R[1]);
-    out.Ts = std::clamp(T[0], 0.0, 1.0);
-    out.Tp = std::clamp(T[1], 0.0, 1.0);
+    return true;
+}
+
+/// airySingleFilmFast with the angle terms precomputed (ThinFilmCoating: once per evaluation for all
+/// wavelengths).
+inline bool airySingleFilmFastAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
+                                 ThinFilmStackResult& out) {
+    AiryFilmTerms t;
+    if (!airySingleFilmTerms(angle, film, substrate, t)) return false;
+    out = t.clampedPowers();
     return true;
 }
 

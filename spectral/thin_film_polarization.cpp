@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "spectral/thin_film_airy.h"
 #include "spectral/thin_film_stack_detail.h"
 
 namespace iris {
@@ -18,6 +19,12 @@ complexd coherentCross(double Ps, double Pp, complexd as, complexd ap) {
     const double m = std::abs(z);
     if (!(m > 0) || !std::isfinite(m)) return 0.0;
     return std::sqrt(std::max(0.0, Ps * Pp)) * (z / m);
+}
+
+/// z/|z| in real arithmetic, 0 when |z| underflows to 0 (z is finite here).
+complexd unitPhase(complexd z) {
+    const double m = std::sqrt(airy_detail::cnorm(z));
+    return m > 0 ? complexd(z.real() / m, z.imag() / m) : complexd(0.0, 0.0);
 }
 
 /// s and p interface data of one film (docs/thin_film.md §2).
@@ -100,6 +107,25 @@ StackAmplitudes thinFilmStackAmplitudes(double lambdaNm, double cosThetaIncident
     return a;
 }
 
+bool airySingleFilmPolarizationAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
+                                  FilmPolarization& out) {
+    using airy_detail::cmul;
+    AiryFilmTerms t;
+    if (!airySingleFilmTerms(angle, film, substrate, t)) return false;
+    complexd r[2], phaseT[2];
+    for (int k = 0; k < 2; ++k) {
+        // r = num/den = num·conj(den)/|den|²; the phase of t ∝ y1/den is that of y1·conj(den).
+        const complexd z = cmul(t.num[k], std::conj(t.den[k]));
+        r[k] = complexd(z.real() / t.dd[k], z.imag() / t.dd[k]);
+        phaseT[k] = unitPhase(cmul(t.y1[k], std::conj(t.den[k])));  // 0 only where t ≈ 0 (T ≈ 0)
+    }
+    out.power = t.clampedPowers();
+    out.crossR = cmul(r[0], std::conj(r[1]));  // r_s r_p* (the interface layout's C + iD)
+    // coherentCross: √(T_s T_p) · (t_s t_p*)/|t_s t_p*|.
+    out.crossT = std::sqrt(std::max(0.0, out.power.Ts * out.power.Tp)) * cmul(phaseT[0], std::conj(phaseT[1]));
+    return true;
+}
+
 FilmPolarization stackPolarization(double lambdaNm, double cosThetaIncident, double incidentIor, std::span<const Layer> layers,
                                    complexd substrateIor) {
     const StackAmplitudes a = thinFilmStackAmplitudes(lambdaNm, cosThetaIncident, incidentIor, layers, substrateIor);
@@ -113,8 +139,13 @@ FilmPolarization stackPolarization(double lambdaNm, double cosThetaIncident, dou
 FilmPolarization singleFilmPolarization(ThinFilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident,
                                         double incidentIor, const Layer& film, complexd substrateIor) {
     switch (mode) {
-        case ThinFilmPhaseMode::Exact:
+        case ThinFilmPhaseMode::Exact: {
+            FilmPolarization p;
+            if (airySingleFilmPolarizationAt(airyAngle(cosThetaIncident, incidentIor), airyFilmConstants(lambdaNm, film),
+                                             squaredIndex(substrateIor), p))
+                return p;
             return stackPolarization(lambdaNm, cosThetaIncident, incidentIor, std::span<const Layer>(&film, 1), substrateIor);
+        }
         case ThinFilmPhaseMode::Truncated:
             return truncated(filmPair(lambdaNm, cosThetaIncident, incidentIor, film, substrateIor), std::max(K, 0));
         case ThinFilmPhaseMode::Incoherent:

@@ -15,6 +15,8 @@
 
 namespace iris {
 
+struct AiryAngle;  // spectral/thin_film_airy.h
+
 struct FilmPolarization {
     ThinFilmStackResult power;       // R_s, R_p, T_s, T_p (as thinFilmStackRT / singleFilmRT)
     complexd crossR{0.0, 0.0};       // C + iD of the reflection
@@ -33,7 +35,17 @@ StackAmplitudes thinFilmStackAmplitudes(double lambdaNm, double cosThetaIncident
 /// The terms of an exact (coherent, all round trips) stack of any number of layers.
 FilmPolarization stackPolarization(double lambdaNm, double cosThetaIncident, double incidentIor, std::span<const Layer> layers,
                                    complexd substrateIor);
-/// The terms of one film in a phase mode (docs/thin_film.md §2); K is used by Truncated only. The
+/// The terms of an exact single film from the closed-form Airy sum (spectral/thin_film_airy.h
+/// airySingleFilmTerms, the spectral mode's kernel): its powers (clamped as airySingleFilmFastAt
+/// clamps them), C + iD = r_s r_p* with r = num/den, and √(T_s T_p) times the phase of t_s t_p*,
+/// t = 4 y0 y1 e^{iδ}/den, whose factor 4 y0 e^{iδ} (y0 > 0 real, δ the same for s and p) drops
+/// out of the phase. Declines exactly where airySingleFilmFastAt does (the caller then uses stackPolarization,
+/// the transfer matrix, as airySingleFilm falls back to thinFilmStackRT).
+bool airySingleFilmPolarizationAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
+                                  FilmPolarization& out);
+
+/// The terms of one film in a phase mode (docs/thin_film.md §2); K is used by Truncated only. Exact:
+/// airySingleFilmPolarizationAt, else stackPolarization (as singleFilmRT evaluates airySingleFilm). The
 /// truncated sums' powers are clamped as the materials clamp them (R ≤ 1, T ≤ 1 − R), the cross
 /// terms scaled to match.
 FilmPolarization singleFilmPolarization(ThinFilmPhaseMode mode, int K, double lambdaNm, double cosThetaIncident,

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <random>
 
 #include "spectral/mueller.h"
 #include "spectral/stokes_basis.h"
@@ -131,6 +132,49 @@ TEST(Mueller, RotateBasesEqualsTheMatrixProducts) {
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) EXPECT_NEAR(r(i, j)[l], want.m[i][j], 1e-5f);
     }
+}
+
+// The interface layout's rotation (mueller::rotatedInterface, what rotateBases takes for it) against
+// the dense R_out · M · R_inᵀ (rotateBasesDense) on random entries and rotations: the same value in
+// every entry and lane (== : equal up to the sign of a zero).
+TEST(Mueller, RotatedInterfaceEqualsTheDenseRotation) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const int n = 1 + trial % 9;
+        auto random = [&] { return SampledSpectrum::fromLanes(n, [&](int) { return u(rng); }); };
+        const MuellerSpectrum M = mueller::interfaceMueller(random(), random(), random(), random());
+        ASSERT_TRUE(M.interfaceLayout());
+        const auto in = trial % 7 == 0 ? mueller::BasisRotation{} : mueller::BasisRotation::ofAngle(4 * u(rng));
+        const auto out = trial % 5 == 0 ? mueller::BasisRotation{} : mueller::BasisRotation::ofAngle(4 * u(rng));
+        MuellerSpectrum dense = M;
+        dense(0, 0) = M(0, 0);  // a write access: dense is no longer marked, rotateBases takes the dense form
+        ASSERT_FALSE(dense.interfaceLayout());
+        const MuellerSpectrum fast = mueller::rotateBases(M, in, out), want = mueller::rotateBases(dense, in, out);
+        const MuellerSpectrum direct = mueller::rotatedInterface(M, in, out), reference = mueller::rotateBasesDense(M, in, out);
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                for (int l = 0; l < n; ++l) {
+                    ASSERT_EQ(fast(i, j)[l], want(i, j)[l]) << trial << " (" << i << ", " << j << ") lane " << l;
+                    ASSERT_EQ(direct(i, j)[l], reference(i, j)[l]) << trial << " (" << i << ", " << j << ") lane " << l;
+                }
+    }
+}
+
+TEST(Mueller, InterfaceLayoutSurvivesScalingAndSumsOnly) {
+    const SampledSpectrum a(4, 0.5f), b(4, 0.25f);
+    MuellerSpectrum M = mueller::interfaceMueller(a, b, a, b);
+    M *= 2.0f;
+    M *= a;
+    EXPECT_TRUE(M.interfaceLayout());
+    M += mueller::interfaceMueller(b, a, b, a);
+    EXPECT_TRUE(M.interfaceLayout());
+    M += MuellerSpectrum::absorber(a);  // the identity has the layout, but is not marked: the sum is general
+    EXPECT_FALSE(M.interfaceLayout());
+    EXPECT_FALSE((mueller::interfaceMueller(a, b, a, b) * mueller::interfaceMueller(a, b, a, b)).interfaceLayout());
+    MuellerSpectrum W = mueller::interfaceMueller(a, b, a, b);
+    W(0, 2) = a;  // breaks the layout
+    EXPECT_FALSE(W.interfaceLayout());
 }
 
 TEST(Mueller, DepolarizerProductsStayDepolarizing) {

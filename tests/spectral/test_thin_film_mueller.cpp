@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "spectral/thin_film_airy.h"
 #include "spectral/thin_film_mueller.h"
 
 using namespace iris;
@@ -86,6 +87,44 @@ TEST(FilmMueller, EntriesAreTheTransferMatrixAmplitudes) {
         EXPECT_NEAR(T.m[3][2], cross.imag(), 1e-12);
     }
     RecordProperty("max_abs_difference", std::to_string(worst));
+}
+
+// The closed form the materials use for an exact single film (airySingleFilmPolarizationAt) against
+// the transfer matrix (stackPolarization) and the naive characteristic matrix: absorbing films,
+// conductor substrates, and light from a denser medium (total internal reflection).
+TEST(FilmMueller, ExactSingleFilmClosedFormIsTheTransferMatrix) {
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<double> u(0, 1);
+    int fast = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Layer film{complexd(1.05 + 2 * u(rng), u(rng) < 0.5 ? 0.0 : 0.3 * u(rng)), 1500 * u(rng)};
+        const complexd sub = u(rng) < 0.5 ? complexd(1.0 + u(rng), 0) : complexd(0.1 + u(rng), 4 * u(rng));
+        const double cosI = 0.02 + 0.98 * u(rng), n0 = 1 + u(rng), lambda = 360 + 470 * u(rng);
+        FilmPolarization p;
+        if (!airySingleFilmPolarizationAt(airyAngle(cosI, n0), airyFilmConstants(lambda, film), squaredIndex(sub), p)) continue;
+        ++fast;
+        ThinFilmStackResult airy;  // the powers are the spectral kernel's, bit for bit
+        ASSERT_TRUE(airySingleFilmFast(cosI, n0, airyFilmConstants(lambda, film), squaredIndex(sub), airy));
+        EXPECT_EQ(p.power.Rs, airy.Rs);
+        EXPECT_EQ(p.power.Rp, airy.Rp);
+        EXPECT_EQ(p.power.Ts, airy.Ts);
+        EXPECT_EQ(p.power.Tp, airy.Tp);
+        const FilmPolarization tmm = stackPolarization(lambda, cosI, n0, std::span<const Layer>(&film, 1), sub);
+        EXPECT_NEAR(p.crossR.real(), tmm.crossR.real(), 1e-12) << i;
+        EXPECT_NEAR(p.crossR.imag(), tmm.crossR.imag(), 1e-12) << i;
+        EXPECT_NEAR(p.crossT.real(), tmm.crossT.real(), 1e-12) << i;
+        EXPECT_NEAR(p.crossT.imag(), tmm.crossT.imag(), 1e-12) << i;
+        const Naive ref = naiveStack(lambda, cosI, n0, {film}, sub);
+        const complexd x = ref.r[0] * std::conj(ref.r[1]);
+        EXPECT_NEAR(p.crossR.real(), x.real(), 1e-12) << i;
+        EXPECT_NEAR(p.crossR.imag(), x.imag(), 1e-12) << i;
+        if (sub.imag() != 0) continue;  // transmission into a real substrate
+        const complexd xt = ref.t[0] * std::conj(ref.t[1]);
+        const complexd cross = std::abs(xt) > 0 ? std::sqrt(ref.T[0] * ref.T[1]) * xt / std::abs(xt) : 0.0;
+        EXPECT_NEAR(p.crossT.real(), cross.real(), 1e-12) << i;
+        EXPECT_NEAR(p.crossT.imag(), cross.imag(), 1e-12) << i;
+    }
+    EXPECT_GT(fast, 3900);  // the closed form declines only at q1 = 0 exactly
 }
 
 TEST(FilmMueller, UnpolarizedResponseIsTodaysReflectanceAndTransmittance) {
