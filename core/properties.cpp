@@ -30,6 +30,31 @@ void Properties::set(const std::string& name, PropertyValue value, const SourceL
     values_[name] = Entry{std::move(value), loc};
 }
 
+const PropertyValue* Properties::peek(const std::string& name) const {
+    const auto it = values_.find(name);
+    return it == values_.end() ? nullptr : &it->second.value;
+}
+
+void Properties::replace(const std::string& name, PropertyValue value) {
+    const auto it = values_.find(name);
+    if (it == values_.end()) fail("Properties::replace: no parameter '", name, "'");
+    it->second.value = std::move(value);
+}
+
+void Properties::rename(const std::string& from, const std::string& to) {
+    const auto it = values_.find(from);
+    if (it == values_.end()) fail("Properties::rename: no parameter '", from, "'");
+    Entry e = std::move(it->second);
+    values_.erase(it);
+    if (const auto other = values_.find(to); other != values_.end()) {
+        const bool fromFirst = e.loc.line < other->second.loc.line;
+        const SourceLocation& first = fromFirst ? e.loc : other->second.loc;
+        const SourceLocation& second = fromFirst ? other->second.loc : e.loc;
+        failAt(second, "parameter '", to, "' is specified twice (first at ", first.str(), ")");
+    }
+    values_.emplace(to, std::move(e));
+}
+
 std::vector<std::string> Properties::names() const {
     std::vector<std::string> n;
     for (const auto& [k, v] : values_) n.push_back(k);

@@ -65,6 +65,13 @@ public:
 
     /// Set a named parameter; a duplicate name is an error at `loc`.
     void set(const std::string& name, PropertyValue value, const SourceLocation& loc);
+    /// For the upgrade pass (render/loader/scene_upgrade.h), before any plugin reads: the stored
+    /// value of `name` without marking it as used (nullptr when absent); a new value for `name`,
+    /// kept where it was written; `from` renamed to `to` (an error at the later of the two
+    /// elements when both are given).
+    const PropertyValue* peek(const std::string& name) const;
+    void replace(const std::string& name, PropertyValue value);
+    void rename(const std::string& from, const std::string& to);
     /// Unnamed nested objects (e.g. the bsdf inside a twosided, shapes' bsdf without a name).
     void addChild(PropertiesPtr child) { children_.push_back(std::move(child)); }
     const std::vector<PropertiesPtr>& children() const { return children_; }

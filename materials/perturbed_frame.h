@@ -19,17 +19,16 @@
 
 namespace iris {
 
-/// Mitsuba 3's options of both wrappers (PerturbedBSDF's constructor), both on by default in a
-/// version 2.x/3.x scene; Mitsuba 0.6's normalmap/bumpmap (2014) had neither, so a 0.x scene
-/// defaults them to off.
+/// Mitsuba 3's options of both wrappers (PerturbedBSDF's constructor), both on by default;
+/// Mitsuba 0.6's normalmap/bumpmap (2014) had neither, so the upgrade pass turns them off in a
+/// version 0.x scene (render/loader/scene_upgrade.h).
 struct PerturbOptions {
     bool flipInvalidNormals = true;    // flip_invalid_normals
     bool useShadowingFunction = true;  // use_shadowing_function
     static PerturbOptions read(const Properties& p) {
-        const bool def = p.formatVersion() >= 2;
         PerturbOptions o;
-        o.flipInvalidNormals = p.getBool("flip_invalid_normals", def);
-        o.useShadowingFunction = p.getBool("use_shadowing_function", def);
+        o.flipInvalidNormals = p.getBool("flip_invalid_normals", true);
+        o.useShadowingFunction = p.getBool("use_shadowing_function", true);
         return o;
     }
 };

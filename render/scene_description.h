@@ -16,6 +16,7 @@
 #include "materials/material.h"
 #include "media/medium.h"
 #include "render/films/ldr_tonemap.h"
+#include "render/scene_defaults.h"
 #include "render/filters/rfilter.h"
 #include "core/cylinder_intersection.h"
 #include "core/sdf_grid.h"
@@ -83,9 +84,9 @@ struct SceneDescription {
     std::vector<std::shared_ptr<Light>> lights;  // non-area lights (point, spot, env, ...)
     CameraDescription camera;
     IntegratorPtr integrator;  // render/integrator.h; the loader gives kDefaultIntegrator (render/scene_defaults.h) when the scene names none
-    int spp = 16;  // sampler sample_count
+    int spp = kDefaultSampleCount;  // sampler sample_count
     // The sampler's sequence (render/samplers/); its pattern size is set by the renderer.
-    std::string samplerName = "independent";
+    std::string samplerName = kDefaultSampler;
     SamplePattern samplePattern;
     // What the loader charged to the memory budget for this scene, given back when the last copy goes.
     std::shared_ptr<const MemoryReservation> memory;

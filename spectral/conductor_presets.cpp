@@ -53,9 +53,9 @@ ConductorIOR readConductor(const Properties& p) {
         s.eta = readIOR(p, "eta", IOR(), IorQuantity::ConductorOptics);
         s.k = readIOR(p, "k", IOR(), IorQuantity::ConductorOptics);
     } else {
-        // Mitsuba 0.6, src/bsdfs/conductor.cpp and roughconductor.cpp: default material "Cu";
-        // Mitsuba 3: "none" (a perfect mirror).
-        const std::string name = p.getString("material", p.formatVersion() >= 2 ? "none" : "Cu");
+        // Mitsuba 3: default material "none" (a perfect mirror). A version 0.x scene's conductor
+        // got Mitsuba 0.6's "Cu" in the upgrade pass (render/loader/scene_upgrade.h).
+        const std::string name = p.getString("material", "none");
         const ConductorSpectra preset = withLocation(p.locationOf("material"), [&] { return loadConductorPreset(name); });
         s.mirror = preset.mirror();
         if (!s.mirror) {
@@ -66,14 +66,10 @@ ConductorIOR readConductor(const Properties& p) {
             s.k = IOR::tabulated(withMitsubaRGBModeValue(preset.k, MitsubaTableSource::ConductorPreset, version));
         }
     }
-    // Mitsuba 0.6's exterior index `extEta` (read as ext_eta, default "air"; η and k are divided by
-    // it); Mitsuba 3 has none. `ext_ior` (default 1) is iris's name in every version.
-    if (p.formatVersion() < 2 && p.has("ext_eta")) {
-        if (p.has("ext_ior")) failAt(p.locationOf("ext_ior"), "give either 'ext_eta' (Mitsuba 0.6) or 'ext_ior', not both");
-        s.extIOR = readConstantIOR(p, "ext_eta", 1.000277f);
-    } else {
-        s.extIOR = readConstantIOR(p, "ext_ior", p.formatVersion() >= 2 ? 1.0f : 1.000277f);
-    }
+    // The exterior index η and k are divided by: iris's `ext_ior`, default 1 (Mitsuba 3 has none).
+    // Mitsuba 0.6's `extEta` (default "air") became ext_ior in the upgrade pass
+    // (render/loader/scene_upgrade.h).
+    s.extIOR = readConstantIOR(p, "ext_ior", 1.0f);
     return s;
 }
 

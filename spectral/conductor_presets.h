@@ -44,14 +44,15 @@ std::string conductorDataDir();
 
 /// Read a conductor's optical constants from a scene (Mitsuba parameters), with the IOR reader
 /// (spectral/ior_params.h):
-///   material  preset name when neither eta nor k is given (default "none" in version 2/3 scenes,
-///             Mitsuba 3; "Cu" in version 0.x scenes, Mitsuba 0.6; Properties::formatVersion)
+///   material  preset name when neither eta nor k is given (default "none", Mitsuba 3; a version
+///             0.x scene gets Mitsuba 0.6's "Cu" from the upgrade pass, render/loader/scene_upgrade.h)
 ///   eta, k    IorQuantity::ConductorOptics (float, rgb or spectrum as Mitsuba reads them, ≥ 0) —
 ///             both or neither
 ///   ext_ior   float or IOR preset name of the outside medium (iris extension, the thesis uses
-///             η_i = 1.00028 for air): default 1 in version 2/3 (Mitsuba 3 has no exterior index),
-///             1.000277 ("air") in version 0.x, where Mitsuba 0.6's name `extEta` (ext_eta) is
-///             read too
+///             η_i = 1.00028 for air): default 1 (Mitsuba 3 has no exterior index); in a version
+///             0.x scene the upgrade pass gives Mitsuba 0.6's extEta, default 1.000277 ("air")
+/// The RGB-mode value of a named conductor's tables follows Properties::formatVersion
+/// (spectral/mitsuba_rgb.h).
 ConductorIOR readConductor(const Properties& p);
 
 }  // namespace iris

@@ -44,9 +44,10 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
     if (const PropertiesPtr* obj = std::get_if<PropertiesPtr>(&e.value); obj && (*obj)->tag() == "spectrum")
         return SpectrumRegistry::instance().create(**obj, kind);
     if (const SpectrumValue* s = std::get_if<SpectrumValue>(&e.value)) {
-        // An emitter's single-valued <spectrum> in a version 2/3 scene: Mitsuba 3's flat spectrum
-        // (RGB mode: its sRGB colour); version 0.x: value × D65 like a number (spectrumFromNumber).
-        if (s->type == SpectrumValue::Type::Constant && kind == SpectrumKind::Illuminant && p.formatVersion() >= 2)
+        // An emitter's single-valued <spectrum>: Mitsuba 3's flat spectrum (RGB mode: its sRGB
+        // colour). A version 0.x scene's has become a number (value × D65, spectrumFromNumber) in
+        // the upgrade pass (render/loader/scene_upgrade.h).
+        if (s->type == SpectrumValue::Type::Constant && kind == SpectrumKind::Illuminant)
             return mitsuba3UniformEmission(s->constant);
         return withSceneTableRGBModeValue(spectrumFromValue(*s, kind, e.loc), kind, p.formatVersion());
     }

@@ -20,9 +20,9 @@ using SpectrumRegistry = Registry<const Spectrum, SpectrumKind>;
 /// Spectrum from a float, rgb, spectrum or blackbody value or a spectrum plugin object
 /// (SpectrumRegistry); a located error when missing or of
 /// another type. A plain number given to an emitter (Illuminant kind) is that multiple of D65 with
-/// Y = 1, as in Mitsuba 3. A single-valued <spectrum> of an emitter follows the scene's version:
-/// Mitsuba 3's flat spectrum for 2.x/3.x (mitsuba3UniformEmission, spectral/mitsuba_rgb.h),
-/// value × D65 like a number for 0.x (Mitsuba 0.6, intent "illuminant").
+/// Y = 1, as in Mitsuba 3. A single-valued <spectrum> of an emitter is Mitsuba 3's flat spectrum
+/// (mitsuba3UniformEmission, spectral/mitsuba_rgb.h); a version 0.x scene's was made a number
+/// (Mitsuba 0.6, intent "illuminant") by the upgrade pass (render/loader/scene_upgrade.h).
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind);
 /// As above, `def` (a number, read as above) when absent.
 SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKind kind, float def);

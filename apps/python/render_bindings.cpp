@@ -19,6 +19,7 @@
 #include "render/renderer.h"
 #include "render/stokes_output.h"
 #include "render/scene.h"
+#include "render/scene_defaults.h"
 #include "core/source_tree.h"
 
 namespace iris::python {
@@ -32,10 +33,10 @@ struct PyScene {
     std::string hash;  // render/scene_hash.h for a file ("" for a string), as `render` records it
 };
 
-/// The scene's integrator type ("path" when the file names none).
+/// The scene's integrator type (kDefaultIntegrator, render/scene_defaults.h, when it has none).
 std::string integratorType(const PyScene& s) {
     const auto& i = s.scene->description().integrator;
-    return i ? i->type() : std::string("path");
+    return i ? i->type() : std::string(kDefaultIntegrator);
 }
 
 PyScene makeScene(const std::string& path, SceneDescription desc, std::string hash = {}) {

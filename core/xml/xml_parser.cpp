@@ -168,11 +168,12 @@ private:
         return attr(n, name);
     }
 
-    /// Parameter name, upgraded from Mitsuba 0.6 camelCase when the file is version 0.x.
+    /// Parameter name as written (a version 0.x file's camelCase names are upgraded after parsing,
+    /// render/loader/scene_upgrade.h).
     std::string paramName(const pugi::xml_node& n) const {
         const std::string name = requiredAttr(n, "name");
         if (name.empty()) failAt(loc(n), "empty parameter name");
-        return files_.back().major < 2 ? camelToSnake(name) : name;
+        return name;
     }
 
     /// Resolve a relative file name: the current file's folder, then the folders of the files that

@@ -1,7 +1,9 @@
 // First stage of scene loading: a Mitsuba XML file (0.6 or 2.x/3.x syntax) becomes a list of
 // Properties trees, one per top-level object, with includes inlined, $parameters substituted,
-// <ref>s resolved to the referenced (shared) Properties, 0.6 names upgraded and every "filename"
-// resolved to an absolute path. docs/scene_format.md describes the format.
+// <ref>s resolved to the referenced (shared) Properties, every "filename" resolved to an absolute
+// path and every object marked with its file's major version (an unsupported version is refused
+// here, with file and line). Names and values are as written: the version rules and the defaults
+// are applied afterwards by render/loader/scene_upgrade.h. docs/scene_format.md describes the format.
 #pragma once
 
 #include <map>

@@ -9,10 +9,10 @@
 #include "render/lights/light.h"
 #include "render/loader/gltf_loader.h"
 #include "render/loader/instance_loader.h"
+#include "render/loader/scene_upgrade.h"
 #include "render/loader/shape_loader.h"
 #include "render/samplers/sampler_description.h"
 #include "render/sensors/sensor.h"
-#include "render/scene_defaults.h"
 
 namespace iris {
 
@@ -35,13 +35,13 @@ SensorChildren readSensorChildren(const Properties& p) {
     return c;
 }
 
-/// The sensor plugin, bound to its film's size; the film plugin (default: hdrfilm with Mitsuba's
-/// defaults) and the sampler plugin (its sample count; without one the scene keeps 16 spp).
+/// The sensor plugin, bound to its film's size; the film plugin and the sampler plugin (its sample
+/// count and sequence). upgradeScene gave a sensor without them the defaults
+/// (render/scene_defaults.h).
 void loadSensor(const Properties& p, SceneDescription& scene) {
     const SensorChildren c = readSensorChildren(p);
-    const FilmDescription film =
-        c.film ? *FilmRegistry::instance().create(*c.film)
-               : *FilmRegistry::instance().create(Properties("film", "hdrfilm", p.location()));
+    if (!c.film || !c.sampler) failAt(p.location(), "internal error: the sensor has no film or sampler (upgradeScene fills them)");
+    const FilmDescription film = *FilmRegistry::instance().create(*c.film);
     // The film's sums and the three 3-channel float images written from them (EXR, mean, LDR).
     const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
     withLocation(p.location(), [&] {
@@ -57,12 +57,10 @@ void loadSensor(const Properties& p, SceneDescription& scene) {
         if (c.medium->tag() != "medium") failAt(p.locationOf("medium"), "parameter 'medium' must be a <medium>");
         cam.medium = mediumFor(*c.medium);
     }
-    if (c.sampler) {
-        const std::shared_ptr<SamplerDescription> sampler = SamplerRegistry::instance().create(*c.sampler);
-        scene.spp = sampler->sampleCount;
-        scene.samplerName = c.sampler->type();
-        scene.samplePattern = sampler->pattern;
-    }
+    const std::shared_ptr<SamplerDescription> sampler = SamplerRegistry::instance().create(*c.sampler);
+    scene.spp = sampler->sampleCount;
+    scene.samplerName = c.sampler->type();
+    scene.samplePattern = sampler->pattern;
 }
 
 void loadEmitter(const Properties& p, SceneDescription& scene) {
@@ -137,6 +135,7 @@ void checkMediaHaveBoundaries(const ParsedScene& parsed, const SceneDescription&
 /// Every top-level object is loaded even after one fails, so that a file with several problems
 /// reports all of them at once: one iris::Error whose lines are the "file:line: problem" messages.
 SceneDescription build(ParsedScene parsed) {
+    upgradeScene(parsed);  // version rules and defaults, before any plugin reads (render/loader/scene_upgrade.h)
     MemoryAccount memory;  // the meshes, textures and film this scene holds (core/memory_budget.h)
     SceneDescription scene;
     scene.sourceFile = parsed.sourceFile;
@@ -152,9 +151,6 @@ SceneDescription build(ParsedScene parsed) {
     };
     for (const PropertiesPtr& obj : parsed.objects)
         attempt([&] { loadObject(*obj, scene, haveSensor, haveIntegrator); });
-    if (!haveSensor)  // Mitsuba's default sensor
-        attempt([&] { loadSensor(Properties("sensor", "perspective", {scene.sourceFile, 0}), scene); });
-    if (!haveIntegrator) scene.integrator = IntegratorRegistry::instance().create(Properties("integrator", kDefaultIntegrator, {}));
     checkMediaHaveBoundaries(parsed, scene, problems);
     if (problems.empty() && scene.hasMedia() && !scene.integrator->rendersMedia())
         problems.push_back(strCat(scene.sourceFile, ": the scene has participating media, which integrator '", scene.integrator->type(),

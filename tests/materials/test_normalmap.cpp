@@ -235,7 +235,7 @@ TEST(NormalMap, OptionsDefaultByVersion) {
     const vec3 wo = glm::normalize(vec3(-0.95f, 0.1f, 0.15f)), wi = glm::normalize(vec3(-0.3f, 0.2f, 0.9f));
     for (int version : {0, 3}) {
         auto p = normalMapProps(0.5f * vec3(std::sin(a), 0.0f, std::cos(a)) + 0.5f);
-        p->setFormatVersion(version);
+        test::asSceneVersion(p, version);  // as the loader reads a file of this version
         auto inst = test::makeBSDF(*p, SampledWavelengths::rgb(defaultChannelWavelengths()));
         const float f = inst.bsdf->eval(wo, wi, TransportMode::Radiance)[0];
         if (version == 0)

@@ -18,6 +18,7 @@
 #include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/spectrum_params.h"
 #include "spectral/wavelengths.h"
+#include "tests/support/bsdf_test_util.h"
 #include "tests/support/spectrum_pairs.h"
 
 using namespace iris;
@@ -102,9 +103,10 @@ Table tableOf(const SpectrumPtr& s) {
 ConductorIOR conductor(const char* material, int version) {
     Properties p = props("bsdf", "roughconductor", version);
     p.set("material", std::string(material), SourceLocation{"scene.xml", 4});
-    // Version 0.x divides η and κ by the exterior index (default air, 1.000277; Mitsuba 0.6's
-    // extEta): 1 here, so that the tables' own projection is seen.
-    if (version == 0) p.set("ext_eta", 1.0f, SourceLocation{"scene.xml", 5});
+    // η and κ are divided by the exterior index (ext_ior, default 1; a version 0.x scene's gets
+    // Mitsuba 0.6's extEta, default air 1.000277, from the upgrade pass): 1 here, so that the
+    // tables' own projection is seen.
+    p.set("ext_ior", 1.0f, SourceLocation{"scene.xml", 5});
     return readConductor(p);
 }
 
@@ -224,11 +226,14 @@ TEST(MitsubaRGB, SingleValuedEmissionFollowsTheVersion) {
     const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.23f, 8);
     const SpectrumPtr d65 = spectrumFromNumber(0.5f, SpectrumKind::Illuminant);
     for (int version : {0, 2, 3}) {
-        Properties emitter = props("emitter", "area", version);
-        emitter.set("radiance", half, SourceLocation{"scene.xml", 5});
-        emitter.set("number", 0.5f, SourceLocation{"scene.xml", 6});
-        const SpectrumPtr s = getSpectrum(emitter, "radiance", SpectrumKind::Illuminant);
-        const SpectrumPtr f = getSpectrum(emitter, "number", SpectrumKind::Illuminant);
+        // As the loader gives it: a version 0.x scene's single value became a number in the
+        // upgrade pass (render/loader/scene_upgrade.h).
+        auto emitter = std::make_shared<Properties>(props("emitter", "area", version));
+        emitter->set("radiance", half, SourceLocation{"scene.xml", 5});
+        emitter->set("number", 0.5f, SourceLocation{"scene.xml", 6});
+        test::asSceneVersion(emitter, version);
+        const SpectrumPtr s = getSpectrum(*emitter, "radiance", SpectrumKind::Illuminant);
+        const SpectrumPtr f = getSpectrum(*emitter, "number", SpectrumKind::Illuminant);
         const SampledSpectrum spectral = s->sample(wl), fromFloat = f->sample(wl), rgb = s->sample(kRGB);
         for (int i = 0; i < wl.size(); ++i) {
             EXPECT_EQ(fromFloat[i], d65->eval(wl.lambda(i)));  // a number: × D65 in every version
@@ -238,9 +243,10 @@ TEST(MitsubaRGB, SingleValuedEmissionFollowsTheVersion) {
         expectNear(rgb, want, 1e-3f, "rgb, version " + std::to_string(version));
         if (version >= 2) EXPECT_NEAR(rgb[0], 0.5f * 1.2048f, 1e-4f);
         // A reflectance's single value is the constant in every version.
-        Properties bsdf = props("bsdf", "diffuse", version);
-        bsdf.set("reflectance", half, SourceLocation{"scene.xml", 7});
-        const SampledSpectrum rho = getSpectrum(bsdf, "reflectance", SpectrumKind::Reflectance)->sample(wl);
+        auto bsdf = std::make_shared<Properties>(props("bsdf", "diffuse", version));
+        bsdf->set("reflectance", half, SourceLocation{"scene.xml", 7});
+        test::asSceneVersion(bsdf, version);
+        const SampledSpectrum rho = getSpectrum(*bsdf, "reflectance", SpectrumKind::Reflectance)->sample(wl);
         for (int i = 0; i < wl.size(); ++i) EXPECT_EQ(rho[i], 0.5f);
     }
 }

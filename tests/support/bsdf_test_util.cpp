@@ -11,6 +11,7 @@
 #include "core/registry.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "render/loader/scene_upgrade.h"
 
 namespace iris::test {
 
@@ -39,10 +40,17 @@ BSDFInstance makeBSDF(const std::string& type, std::initializer_list<Param> para
     return makeBSDF(*makeProps(type, params), wl);
 }
 
+void asSceneVersion(const PropertiesPtr& p, int formatVersion) {
+    p->setFormatVersion(formatVersion);
+    ParsedScene scene;
+    scene.objects.push_back(p);
+    upgradeScene(scene);
+}
+
 BSDFInstance makeBSDFVersion(int formatVersion, const std::string& type, std::initializer_list<Param> params,
                              SampledWavelengths wl) {
     const auto p = makeProps(type, params);
-    p->setFormatVersion(formatVersion);
+    asSceneVersion(p, formatVersion);
     return makeBSDF(*p, wl);
 }
 

@@ -57,8 +57,12 @@ std::shared_ptr<Properties> makeProps(const std::string& type, std::initializer_
 BSDFInstance makeBSDF(const Properties& props, SampledWavelengths wl);
 BSDFInstance makeBSDF(const std::string& type, std::initializer_list<Param> params,
                       SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths()));
-/// makeBSDF for an object of a scene file of format version `formatVersion` (0: Mitsuba 0.6,
-/// 2/3: Mitsuba 3; Properties::formatVersion), for plugins whose semantics depend on it.
+/// Mark `p` as an object of a scene file of format version `formatVersion` (0: Mitsuba 0.6, 2/3:
+/// Mitsuba 3; Properties::formatVersion) and upgrade it as the loader does
+/// (render/loader/scene_upgrade.h): what a plugin reads from such a file.
+void asSceneVersion(const PropertiesPtr& p, int formatVersion);
+/// makeBSDF for an object of a scene file of format version `formatVersion` (asSceneVersion), for
+/// plugins whose semantics depend on it.
 BSDFInstance makeBSDFVersion(int formatVersion, const std::string& type, std::initializer_list<Param> params,
                              SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths()));
 
