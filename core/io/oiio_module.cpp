@@ -76,6 +76,11 @@ IRIS_OIIO_EXPORT void* iris_oiio_open(const char* path, iris_oiio_info* info, ch
         OIIO::ImageSpec config;
         config.attribute("oiio:UnassociatedAlpha", 1);
         image->in = OIIO::ImageInput::open(path, &config);
+        // Discard any error state the new reader starts with, so that has_error() after the reads
+        // below describes those reads only: OpenImageIO keeps unretrieved errors per thread outside
+        // the reader, and a new reader could inherit a destroyed one's (OpenImageIO pull request
+        // 4239, 2024, "Error retrieval safeguards for recycled objects", fixed one such case).
+        if (image->in) (void)image->in->geterror();
         if (!image->in) {
             std::string e = OIIO::geterror();
             if (e.empty()) e = "not a readable image";
@@ -118,7 +123,7 @@ IRIS_OIIO_EXPORT int iris_oiio_read_float(void* handle, float* out, char* err, s
         }
         if (!ok || in.has_error()) {
             std::string e = in.geterror();
-            if (e.empty()) e = "corrupt or truncated pixel data";
+            if (e.empty()) e = "corrupt or truncated pixel data (the reader failed without a message)";
             setError(err, errlen, "cannot read pixels: " + e);
             return 0;
         }

@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <fstream>
 
 #include "core/io/image.h"
@@ -24,10 +27,27 @@ const std::vector<unsigned char>& encodedBytes(const Document& doc, int index, c
     return img.image;
 }
 
-/// core's readImage reads files: the bytes go to a private temporary file, removed afterwards.
+/// The file extension of an encoded image from its signature (PNG: 89 'PNG' 0D 0A 1A 0A, PNG
+/// specification §5.2; JPEG: FF D8 FF, ITU T.81 SOI marker; WebP: "RIFF" .... "WEBP", RFC 9649),
+/// the formats glTF and its texture extensions name; "" for anything else.
+std::string extensionOf(const std::vector<unsigned char>& b) {
+    auto starts = [&](std::initializer_list<unsigned char> sig, size_t at = 0) {
+        if (b.size() < at + sig.size()) return false;
+        return std::equal(sig.begin(), sig.end(), b.begin() + std::ptrdiff_t(at));
+    };
+    if (starts({0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) return ".png";
+    if (starts({0xFF, 0xD8, 0xFF})) return ".jpg";
+    if (starts({'R', 'I', 'F', 'F'}) && starts({'W', 'E', 'B', 'P'}, 8)) return ".webp";
+    return "";
+}
+
+/// core's readImage reads files: the bytes go to a private temporary file, removed afterwards. The
+/// file gets its format's extension, so that OpenImageIO opens it with that format's reader
+/// instead of trying every reader on a name without one.
 Image readEncoded(const std::vector<unsigned char>& bytes, const std::string& what) {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "iris-gltf-image-XXXXXX").string();
-    const int fd = mkstemp(tmpl.data());
+    const std::string ext = extensionOf(bytes);
+    std::string tmpl = (std::filesystem::temp_directory_path() / ("iris-gltf-image-XXXXXX" + ext)).string();
+    const int fd = mkstemps(tmpl.data(), int(ext.size()));
     if (fd < 0) fail(what, ": cannot create a temporary file to decode the image");
     close(fd);
     struct Remove {
