@@ -25,13 +25,13 @@ def _git(*args) -> str:
     return subprocess.run(["git", *args], cwd=REPO, capture_output=True, text=True, timeout=10).stdout.strip()
 
 
-def provenance() -> dict:
+def provenance(results_dirs: tuple = ("experiments/results",)) -> dict:
     """Which commit the results come from. A working tree with uncommitted or untracked changes
-    (outside experiments/results/, where the results themselves are written) is not a commit: then
-    no commit is named. {"state": "clean" | "dirty" | "unknown", "commit": hash or None, "text"}."""
+    (outside `results_dirs`, where the results themselves are written) is not a commit: then no
+    commit is named. {"state": "clean" | "dirty" | "unknown", "commit": hash or None, "text"}."""
     try:
         rev = _git("rev-parse", "HEAD")
-        changes = _git("status", "--porcelain", "--", ".", ":(exclude)experiments/results")
+        changes = _git("status", "--porcelain", "--", ".", *(f":(exclude){d}" for d in results_dirs))
     except (OSError, subprocess.SubprocessError):
         rev, changes = "", ""
     if not rev:

@@ -390,7 +390,8 @@ def main(argv=None):
     args.scenes_list = [s for s in args.scene_list.split(",") if s]
     args.et_width, args.et_height = (int(x) for x in args.et_size.split("x"))
     args.spp_list = [int(x) for x in args.et_spp.split(",")]
-    prov = provenance()
+    # run.py's other targets write experiments/perf/results before this part runs: outputs, not source
+    prov = provenance(("experiments/results", "experiments/perf/results"))
     started = time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime())
     load_before = loadavg()
     found = renderers(args)
