@@ -4,7 +4,7 @@ machine in one run, compares with the targets and, where a target is missed, pro
 relevant run with `perf record` and summarises where the time goes.
 
     /usr/bin/python3 experiments/perf/run.py [--quick] [--build DIR] [--out DIR] [--no-perf] [--no-instructions]
-        [--peers-bin ../shared/peers/bin] [--peers-rounds 5]
+        [--peers-bin ../shared/peers/bin] [--peers-rounds 5] [--peers-equal-time]
 
 Writes <out>/report.md, <out>/measurements.json, <out>/targets.csv and <out>/profiles/*.txt
 (default out: experiments/perf/results). Needs the benchmarks built in --build (default build-perf,
@@ -554,7 +554,8 @@ def t8_peers(ctx):
     import peers
     out = os.path.join(ctx.out, "peers")
     rounds = "2" if ctx.quick else str(ctx.args.peers_rounds)
-    peers.main(["--iris", ctx.exe("render"), "--peers-bin", ctx.args.peers_bin, "--rounds", rounds, "--out", out])
+    peers.main(["--iris", ctx.exe("render"), "--peers-bin", ctx.args.peers_bin, "--rounds", rounds, "--out", out]
+               + (["--equal-time"] if ctx.args.peers_equal_time else []))
     with open(os.path.join(out, "peers.json")) as f:
         sbs = json.load(f)["side_by_side"]
     goals = {"spheres": 1.0, "bunny": 0.5, "dragon": 0.5}
@@ -944,6 +945,8 @@ def main():
     ap.add_argument("--peers-bin", help="folder of peer renderers laid out as ../shared/peers/bin (target 8; "
                     "without it target 8 is not measured)")
     ap.add_argument("--peers-rounds", type=int, default=5, help="rounds of target 8 (experiments/perf/peers.py)")
+    ap.add_argument("--peers-equal-time", action="store_true",
+                    help="target 8 also measures error at equal time (peers.py --equal-time; its own section in peers/peers.md)")
     args = ap.parse_args()
     ctx = Ctx(args)
     for exe in ["render", "bench_perf_thinfilm", "bench_perf_tables"]:
