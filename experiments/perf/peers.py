@@ -52,6 +52,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 from iris_experiments.exr import read_exr  # noqa: E402
 from iris_experiments.report import machine_info, markdown_table, provenance  # noqa: E402
+from iris_experiments.thin_film_maps import REC709_Y  # noqa: E402
 from iris_experiments.tools import REPO  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -64,7 +65,6 @@ IRIS_VARIANTS = {"iris-s4": ["--spectral-samples", "4"], "iris-s16": ["--spectra
 # lobes (thindielectric's transmission) with their weight where `path`, like Mitsuba's path tracers,
 # tests plain occlusion (materials/thindielectric.cpp) — the integrator a user would pick for that.
 EQUAL_TIME_IRIS = {"iris-s4": "path", "iris-s4-volpath": "volpath", "iris-rgb": "path"}
-REC709_Y = np.array([0.2126, 0.7152, 0.0722])  # ITU-R BT.709 luminance weights
 
 
 # ---------------------------------------------------------------- scene copies and commands
