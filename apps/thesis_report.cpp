@@ -20,6 +20,7 @@
 #include "materials/albedo.h"
 #include "materials/material.h"
 #include "materials/rough_plastic_tables.h"
+#include "render/loader/scene_upgrade.h"
 #include "spectral/wavelengths.h"
 
 using namespace iris;
@@ -33,8 +34,11 @@ struct Config {
 
 std::shared_ptr<Material> makeMaterial(const Config& c) {
     Properties p("bsdf", c.type, SourceLocation{"thesis_report", 0});
-    p.setFormatVersion(0);  // the thesis' models: Mitsuba 0.6's roughplastic (docs/scene_format.md)
     for (const auto& [k, v] : c.params) p.set(k, v, SourceLocation{"thesis_report", 0});
+    // The thesis' models as a version 0.x file's objects (Mitsuba 0.6's roughplastic;
+    // docs/scene_format.md): the upgrade pass's rules.
+    p.setFormatVersion(0);
+    upgradeObject(p);
     return MaterialRegistry::instance().create(p);
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/mitsuba_convention.h"
 #include "core/object_cache.h"
 #include "core/math.h"
 
@@ -28,6 +29,9 @@ struct SpectrumValue {
     std::vector<float> lambdas, values;  // Pairs
     std::string path;                    // File (absolute or already resolved)
     float temperature = 6504.0f, scale = 1.0f;  // Blackbody
+    /// Whose RGB value a table (Pairs, File) renders with in RGB mode (spectral/mitsuba_rgb.h):
+    /// Mitsuba 0.6's in a version 0.x file (set by the upgrade pass), else Mitsuba 3's.
+    MitsubaConvention convention = MitsubaConvention::Mitsuba3;
 };
 
 struct RGBValue {
@@ -56,8 +60,9 @@ public:
     void setId(std::string id) { id_ = std::move(id); }
     const SourceLocation& location() const { return loc_; }
     /// Major version of the scene format of the file that defines this object (0 = Mitsuba 0.6,
-    /// 2 or 3 = Mitsuba 2/3; 3 when built in code): plugins whose Mitsuba semantics changed
-    /// between versions choose by it (docs/scene_format.md, "Version-dependent defaults").
+    /// 2 or 3 = Mitsuba 2/3; 3 when built in code). Read only by the upgrade pass
+    /// (render/loader/scene_upgrade.h), which turns it into parameters plugins read
+    /// (core/mitsuba_convention.h; docs/scene_format.md, "Version-dependent defaults").
     int formatVersion() const { return formatVersion_; }
     void setFormatVersion(int major) { formatVersion_ = major; }
     /// Location of a parameter's own element (falls back to the object's location).
@@ -68,10 +73,12 @@ public:
     /// For the upgrade pass (render/loader/scene_upgrade.h), before any plugin reads: the stored
     /// value of `name` without marking it as used (nullptr when absent); a new value for `name`,
     /// kept where it was written; `from` renamed to `to` (an error at the later of the two
-    /// elements when both are given).
+    /// elements when both are given); the object made another plugin's (Mitsuba 0.6's `principled` is
+    /// iris's `disney`).
     const PropertyValue* peek(const std::string& name) const;
     void replace(const std::string& name, PropertyValue value);
     void rename(const std::string& from, const std::string& to);
+    void setType(std::string type) { type_ = std::move(type); }
     /// Unnamed nested objects (e.g. the bsdf inside a twosided, shapes' bsdf without a name).
     void addChild(PropertiesPtr child) { children_.push_back(std::move(child)); }
     const std::vector<PropertiesPtr>& children() const { return children_; }

@@ -7,12 +7,13 @@
 //
 // Sampling chooses the first BSDF with probability 1 − w and the second with probability w, then
 // samples it (Mitsuba 3, src/bsdfs/blendbsdf.cpp: the first when uc > w, with uc rescaled). What
-// the sample carries depends on the scene's version (docs/scene_format.md):
-//   * 2.x/3.x (Mitsuba 3): the nested sample unchanged (its own f and pdf, so its path weight is
+// the sample carries depends on `convention` (core/mitsuba_convention.h; the upgrade pass gives a
+// version 0.x file's blends "mitsuba0.6"; docs/scene_format.md):
+//   * "mitsuba3" (default): the nested sample unchanged (its own f and pdf, so its path weight is
 //     f_i cos/pdf_i), while pdf() is the blend's: an unbiased one-sample estimator, and the MIS
 //     weights of emitters reached by BSDF sampling use the nested pdf, as Mitsuba 3's do (as for
 //     `mask`; materials/mask.cpp).
-//   * 0.x: a sample consistent with eval and pdf (a smooth lobe's f and pdf are the blend's at the
+//   * "mitsuba0.6": a sample consistent with eval and pdf (a smooth lobe's f and pdf are the blend's at the
 //     sampled direction; a delta lobe's are scaled by its selection probability), so MIS weights
 //     sum to one.
 // A constant weight outside [0, 1] is refused (Mitsuba clamps it silently); a texture's values are
@@ -118,7 +119,7 @@ private:
 };
 
 std::shared_ptr<Material> createBlendBSDF(const Properties& p) {
-    auto nested = createNestedMaterials(p, "blendbsdf", {"weight"});
+    auto nested = createNestedMaterials(p, "blendbsdf", {"weight", "convention"});
     if (nested.size() != 2)
         failAt(p.location(), "blendbsdf: expected two nested bsdfs, got ", nested.size(),
                " (Mitsuba: \"Two child BSDFs must be specified!\")");
@@ -127,7 +128,8 @@ std::shared_ptr<Material> createBlendBSDF(const Properties& p) {
         const float w = weight->eval(TextureQuery{});
         if (!(w >= 0.0f && w <= 1.0f)) failAt(p.locationOf("weight"), "blendbsdf: weight ", w, " is outside [0, 1]");
     }
-    return std::make_shared<BlendMaterial>(weight, nested[0], nested[1], p.formatVersion() >= 2);
+    return std::make_shared<BlendMaterial>(weight, nested[0], nested[1],
+                                          getConvention(p) == MitsubaConvention::Mitsuba3);
 }
 
 }  // namespace

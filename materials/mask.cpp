@@ -17,14 +17,15 @@
 // 1 − opacity · (1 − the nested BSDF's own pass-through weight) (Mitsuba 3 mask.cpp,
 // eval_null_transmission; `null`: 1).
 //
-// Version split (docs/scene_format.md, "Version-dependent defaults"):
-//   * 2.x/3.x (Mitsuba 3): opacity is a scalar (a float texture, clamped to [0, 1] when looked
+// Two models, chosen by `convention` (core/mitsuba_convention.h; the upgrade pass gives a version
+// 0.x file's masks "mitsuba0.6"; docs/scene_format.md, "Version-dependent defaults"):
+//   * "mitsuba3" (default): opacity is a scalar (a float texture, clamped to [0, 1] when looked
 //     up, Mitsuba 3 eval_opacity). The nested lobe is chosen with probability opacity and its
 //     sample is returned unchanged: its f and pdf are the nested BSDF's, while pdf(wo, wi) is
 //     opacity · pdf_nested. So MIS weighs an emitter reached by BSDF sampling with the nested pdf
 //     and next-event estimation with opacity · pdf_nested, exactly as Mitsuba 3 does (the weights
 //     then sum to more than 1 where 0 < opacity < 1; iris reproduces this to render as Mitsuba 3).
-//   * 0.x (Mitsuba 0.6, src/bsdfs/mask.cpp): opacity is a spectrum or texture, per channel
+//   * "mitsuba0.6" (src/bsdfs/mask.cpp): opacity is a spectrum or texture, per channel
 //     (wavelength); the nested lobe is chosen with probability p = mean opacity over the lanes
 //     (0.6: its luminance; any p > 0 where opacity > 0 gives the same expectation) and the sample is
 //     weighted consistently: f = opacity · f_nested, pdf = p · pdf_nested; the pass-through carries
@@ -203,7 +204,7 @@ std::shared_ptr<Material> createMask(const Properties& p) {
 
     FloatTexturePtr opacity;
     SpectrumTexturePtr spectral;
-    if (p.formatVersion() == 0)
+    if (getConvention(p) == MitsubaConvention::Mitsuba06)
         spectral = getSpectrumTexture(p, "opacity", SpectrumKind::Reflectance, 0.5f);
     else
         opacity = getFloatTexture(p, "opacity", 0.5f);

@@ -1,9 +1,8 @@
 // The two principled models of iris (docs/materials_principled_cloth.md):
-//   * Disney 2012 (Burley's BRDF, materials/principled.cpp): plugin `disney`, and `principled` in
-//     a version 0.x scene (Mitsuba 0.6 has no principled plugin; iris's `principled` was this
-//     model before Mitsuba 3's was added);
-//   * Mitsuba 3's `principled` BSDF and `principledthin` (materials/principled_mitsuba.cpp):
-//     `principled` in a version 2.x/3.x scene and in objects built in code.
+//   * Disney 2012 (Burley's BRDF, materials/principled.cpp): plugin `disney`, which a version 0.x
+//     scene's `principled` becomes in the upgrade pass (render/loader/scene_upgrade.h; Mitsuba 0.6
+//     has no principled plugin; iris's `principled` was this model before Mitsuba 3's was added);
+//   * Mitsuba 3's `principled` BSDF and `principledthin` (materials/principled_mitsuba.cpp).
 #pragma once
 
 #include <memory>

@@ -2,7 +2,8 @@
 // principledthin.cpp, principledhelpers.h), written from their definitions; both are based on
 // [B12] Burley 2012 ("Physically-Based Shading at Disney") and [B15] Burley 2015 ("Extending the
 // Disney BRDF to a BSDF with Integrated Subsurface Scattering"). iris's own Disney 2012 BRDF
-// (materials/principled.cpp) stays available as `disney` and as `principled` in 0.x scenes.
+// (materials/principled.cpp) stays available as `disney` (a version 0.x file's `principled`, renamed by the
+// upgrade pass, render/loader/scene_upgrade.h).
 // docs/materials_principled_cloth.md §1b lists where Mitsuba's definitions differ from Burley's.
 //
 // Notation: v = wo (towards the viewer, Mitsuba's si.wi), l = wi (towards the light, Mitsuba's
@@ -561,12 +562,6 @@ std::shared_ptr<Material> createPrincipledMitsuba(const Properties& p) {
     return std::make_shared<PrincipledM3Material>(std::move(t), c);
 }
 
-std::shared_ptr<Material> createPrincipled(const Properties& p) {
-    // Mitsuba 0.6 has no principled plugin: a 0.x scene naming it is an iris scene of the Disney
-    // 2012 model, which `principled` meant before Mitsuba 3's model was added.
-    if (p.formatVersion() == 0) return createDisneyPrincipled(p);
-    return createPrincipledMitsuba(p);
-}
 
 std::shared_ptr<Material> createPrincipledThin(const Properties& p) {
     PrincipledThinMaterial::Textures t;
@@ -588,7 +583,7 @@ std::shared_ptr<Material> createPrincipledThin(const Properties& p) {
 
 }  // namespace
 
-IRIS_REGISTER(MaterialRegistry, "principled", createPrincipled);
+IRIS_REGISTER(MaterialRegistry, "principled", createPrincipledMitsuba);
 IRIS_REGISTER(MaterialRegistry, "principledthin", createPrincipledThin);
 
 }  // namespace iris

@@ -12,13 +12,16 @@
 //   nonlinear             bool (ρ/(1−ρFdr) instead of ρ/(1−Fdr))   default false
 //   sample_visible        bool, visible-normal sampling              default true
 //
-// The scene's `version` chooses the internal reflectance Fdr of the coat (docs/scene_format.md):
-//   0.x (Mitsuba 0.6, the thesis): Fdr = 1 − Td(η, α) (eq. 2.54), tabulated;
-//   2.x / 3.x (Mitsuba 3): Fdr = R_int = 2∫ R(1/η, α, μ) μ dμ, the rough interface's own
+//   convention            "mitsuba3" | "mitsuba0.6" (below)         default "mitsuba3"
+//
+// `convention` chooses the internal reflectance Fdr of the coat (core/mitsuba_convention.h; the
+// upgrade pass gives a version 0.x file's "mitsuba0.6"; docs/scene_format.md):
+//   "mitsuba0.6" (Mitsuba 0.6, the thesis): Fdr = 1 − Td(η, α) (eq. 2.54), tabulated;
+//   "mitsuba3": Fdr = R_int = 2∫ R(1/η, α, μ) μ dμ, the rough interface's own
 //   directional reflectance from inside, as Mitsuba 3's mean over 64 nodes
 //   (mitsuba3InternalReflectance). It is smaller than 1 − Td by the interface's single-scattering
 //   loss, so the base looks darker (1/(1 − Fdr) 2 % lower at α = 0.01, 64 % at α = 1; GGX, η 1.5).
-// Everything else (specular lobe, T12 T21 / η², sampling) is the same model in both versions.
+// Everything else (specular lobe, T12 T21 / η², sampling) is the same model in both.
 #include "core/registry.h"
 #include "materials/fresnel_mueller.h"
 #include "materials/material.h"
@@ -137,7 +140,7 @@ public:
         ks_ = getSpectrumTexture(p, "specular_reflectance", SpectrumKind::Reflectance, 1.0f);
         nonlinear_ = p.getBool("nonlinear", false);
         sampleVisible_ = p.getBool("sample_visible", true);  // Mitsuba 0.6 and 3: true
-        mitsuba3_ = p.formatVersion() >= 2;
+        mitsuba3_ = getConvention(p) == MitsubaConvention::Mitsuba3;
         tables_ = &roughPlasticTables(type_);  // first use builds or loads them
         // Constant α: the (η, α) stencil collapsed once into one μ-line (RoughTablesAtAlpha).
         if (const auto* c = dynamic_cast<const ConstantFloatTexture*>(alpha_.get())) {
@@ -178,7 +181,7 @@ private:
     const RoughTransmittanceTables* tables_;
     std::vector<float> line_;  // constant α: collapsed μ-line of (η, α)
     float lineFdr_ = 0.0f;     // constant α: the coat's internal reflectance
-    Mitsuba3InternalReflectanceCurve rIntCurve_;  // textured α, version ≥ 2
+    Mitsuba3InternalReflectanceCurve rIntCurve_;  // textured α, convention mitsuba3
 };
 
 std::shared_ptr<Material> createRoughPlastic(const Properties& p) { return std::make_shared<RoughPlasticMaterial>(p); }

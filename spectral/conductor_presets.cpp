@@ -46,6 +46,7 @@ ConductorSpectra loadConductorPreset(const std::string& name) {
 
 ConductorIOR readConductor(const Properties& p) {
     ConductorIOR s;
+    const MitsubaConvention convention = getConvention(p);  // read in every form (core/mitsuba_convention.h)
     const bool hasEta = p.has("eta"), hasK = p.has("k");
     if (hasEta || hasK) {
         if (p.has("material")) failAt(p.locationOf("material"), "give either 'material' or 'eta'/'k', not both");
@@ -59,11 +60,10 @@ ConductorIOR readConductor(const Properties& p) {
         const ConductorSpectra preset = withLocation(p.locationOf("material"), [&] { return loadConductorPreset(name); });
         s.mirror = preset.mirror();
         if (!s.mirror) {
-            // RGB mode: the RGB value Mitsuba's RGB variant of the scene's version computes from
-            // the tables (spectral/mitsuba_rgb.h); spectral mode: the tables.
-            const int version = p.formatVersion();
-            s.eta = IOR::tabulated(withMitsubaRGBModeValue(preset.eta, MitsubaTableSource::ConductorPreset, version));
-            s.k = IOR::tabulated(withMitsubaRGBModeValue(preset.k, MitsubaTableSource::ConductorPreset, version));
+            // RGB mode: the RGB value the RGB variant of the Mitsuba of the object's `convention`
+            // computes from the tables (spectral/mitsuba_rgb.h); spectral mode: the tables.
+            s.eta = IOR::tabulated(withMitsubaRGBModeValue(preset.eta, MitsubaTableSource::ConductorPreset, convention));
+            s.k = IOR::tabulated(withMitsubaRGBModeValue(preset.k, MitsubaTableSource::ConductorPreset, convention));
         }
     }
     // The exterior index η and k are divided by: iris's `ext_ior`, default 1 (Mitsuba 3 has none).

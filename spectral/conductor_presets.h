@@ -51,8 +51,9 @@ std::string conductorDataDir();
 ///   ext_ior   float or IOR preset name of the outside medium (iris extension, the thesis uses
 ///             η_i = 1.00028 for air): default 1 (Mitsuba 3 has no exterior index); in a version
 ///             0.x scene the upgrade pass gives Mitsuba 0.6's extEta, default 1.000277 ("air")
-/// The RGB-mode value of a named conductor's tables follows Properties::formatVersion
-/// (spectral/mitsuba_rgb.h).
+///   convention "mitsuba3" (default) or "mitsuba0.6": whose RGB value a named conductor's tables
+///             render with in RGB mode (spectral/mitsuba_rgb.h); the upgrade pass writes
+///             "mitsuba0.6" into a version 0.x scene's conductors (core/mitsuba_convention.h)
 ConductorIOR readConductor(const Properties& p);
 
 }  // namespace iris

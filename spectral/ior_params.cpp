@@ -68,9 +68,10 @@ IOR fromValue(const Properties& p, const IorParam& param, bool* perChannel) {
         SpectrumPtr s = getSpectrum(p, param.name, SpectrumKind::Unbounded);
         if (const auto* c = dynamic_cast<const ConstantSpectrum*>(s.get())) return IOR::constant(c->value());
         // Mitsuba's conductor eta/k given as a table: RGB mode renders with the RGB value Mitsuba's
-        // RGB variant computes (spectral/mitsuba_rgb.h), not the table at the channel wavelengths.
-        if (param.quantity == IorQuantity::ConductorOptics)
-            s = withMitsubaRGBModeValue(std::move(s), MitsubaTableSource::SceneValue, p.formatVersion());
+        // RGB variant of the value's convention computes (spectral/mitsuba_rgb.h), not the table at the
+        // channel wavelengths.
+        if (const auto* table = std::get_if<SpectrumValue>(&e.value); table && param.quantity == IorQuantity::ConductorOptics)
+            s = withMitsubaRGBModeValue(std::move(s), MitsubaTableSource::SceneValue, table->convention);
         return IOR::tabulated(std::move(s));
     }
     p.typeError(param.name, index ? "index of refraction (float, IOR preset name, rgb or spectrum)"

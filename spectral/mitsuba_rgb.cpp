@@ -127,9 +127,9 @@ void mitsuba06ZeroExtend(std::vector<float>& lambdas, std::vector<float>& values
 }
 
 vec3 mitsubaRGBModeValue(const std::vector<float>& lambdas, const std::vector<float>& values, SpectrumKind kind,
-                         MitsubaTableSource source, int formatVersion) {
+                         MitsubaTableSource source, MitsubaConvention convention) {
     const bool preset = source == MitsubaTableSource::ConductorPreset;
-    if (formatVersion < 2) {
+    if (convention == MitsubaConvention::Mitsuba06) {
         if (preset) return mitsuba06SpectrumToRGB(lambdas, values);
         std::vector<float> l = lambdas, v = values;
         mitsuba06ZeroExtend(l, v);
@@ -172,10 +172,10 @@ SpectrumPtr mitsuba3UniformEmission(float v) {
     return std::make_shared<MitsubaTableSpectrum>(std::make_shared<ConstantSpectrum>(v, SpectrumKind::Illuminant), rgb);
 }
 
-SpectrumPtr withMitsubaRGBModeValue(SpectrumPtr table, MitsubaTableSource source, int formatVersion) {
+SpectrumPtr withMitsubaRGBModeValue(SpectrumPtr table, MitsubaTableSource source, MitsubaConvention convention) {
     const auto* pl = dynamic_cast<const PiecewiseLinearSpectrum*>(table.get());
     if (!pl) return table;
-    const vec3 rgb = mitsubaRGBModeValue(pl->lambdas(), pl->values(), pl->kind(), source, formatVersion);
+    const vec3 rgb = mitsubaRGBModeValue(pl->lambdas(), pl->values(), pl->kind(), source, convention);
     return std::make_shared<MitsubaTableSpectrum>(std::move(table), rgb);
 }
 

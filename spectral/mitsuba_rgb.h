@@ -1,7 +1,9 @@
 // How Mitsuba's RGB variants turn a tabulated spectrum (a `<spectrum value="λ:v, ...">` or
 // `filename=` value, a named conductor's data/ior/*.spd) into the one RGB triple they render with,
 // so that iris's RGB mode renders a Mitsuba scene as Mitsuba's RGB variant does (issue 14). The
-// rule depends on the scene's `version` (Properties::formatVersion, docs/scene_format.md):
+// rule is the convention of the value (SpectrumValue::convention, or a plugin's `convention`;
+// core/mitsuba_convention.h: the upgrade pass gives a version 0.x file's Mitsuba 0.6's rule;
+// docs/scene_format.md):
 //
 //   Mitsuba 3 (2.x/3.x), spectrum_list_to_srgb (src/core/spectrum.cpp): 1000 equally spaced
 //     wavelengths w_i = 360 + i·470/999 nm; the spectrum's linear interpolant v(w_i), skipped
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/mitsuba_convention.h"
 #include "spectral/spectrum.h"
 
 namespace iris {
@@ -45,9 +48,9 @@ void mitsuba06ZeroExtend(std::vector<float>& lambdas, std::vector<float>& values
 /// as `kind`, or the data file of a named conductor (`material`).
 enum class MitsubaTableSource { SceneValue, ConductorPreset };
 
-/// The RGB triple Mitsuba's RGB variant of the scene's version renders the table with.
+/// The RGB triple the RGB variant of the Mitsuba of `convention` renders the table with.
 vec3 mitsubaRGBModeValue(const std::vector<float>& lambdas, const std::vector<float>& values, SpectrumKind kind,
-                         MitsubaTableSource source, int formatVersion);
+                         MitsubaTableSource source, MitsubaConvention convention);
 
 /// Mitsuba 3's single-valued `<spectrum value="v"/>` of an emitter (src/core/properties.cpp
 /// get_texture_impl, older src/core/xml.cpp create_texture_from_spectrum): the flat (equal-energy)
@@ -60,6 +63,6 @@ SpectrumPtr mitsuba3UniformEmission(float v);
 /// PiecewiseLinearSpectrum), RGB mode returns mitsubaRGBModeValue for every kind (also Unbounded,
 /// which RGB mode otherwise evaluates at the channel wavelengths). Another spectrum is returned as
 /// it is.
-SpectrumPtr withMitsubaRGBModeValue(SpectrumPtr table, MitsubaTableSource source, int formatVersion);
+SpectrumPtr withMitsubaRGBModeValue(SpectrumPtr table, MitsubaTableSource source, MitsubaConvention convention);
 
 }  // namespace iris

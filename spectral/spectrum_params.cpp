@@ -22,9 +22,9 @@ SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const S
     });
 }
 
-SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, int formatVersion) {
+SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, MitsubaConvention convention) {
     if (kind == SpectrumKind::Unbounded) return spec;
-    return withMitsubaRGBModeValue(std::move(spec), MitsubaTableSource::SceneValue, formatVersion);
+    return withMitsubaRGBModeValue(std::move(spec), MitsubaTableSource::SceneValue, convention);
 }
 
 /// A plain number as a spectrum, given as <float> (or as a single-valued <spectrum> in a version 0.x
@@ -49,7 +49,7 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
         // the upgrade pass (render/loader/scene_upgrade.h).
         if (s->type == SpectrumValue::Type::Constant && kind == SpectrumKind::Illuminant)
             return mitsuba3UniformEmission(s->constant);
-        return withSceneTableRGBModeValue(spectrumFromValue(*s, kind, e.loc), kind, p.formatVersion());
+        return withSceneTableRGBModeValue(spectrumFromValue(*s, kind, e.loc), kind, s->convention);
     }
     p.typeError(name, "spectrum (float, rgb, spectrum or blackbody value, or a <spectrum type=...> object)");
 }

@@ -30,13 +30,13 @@ SpectrumPtr getSpectrum(const Properties& p, const std::string& name, SpectrumKi
 SpectrumPtr spectrumFromNumber(float v, SpectrumKind kind);
 /// Build a spectrum of the given kind from a <spectrum>/<blackbody> value, with the rules of a
 /// version 0.x scene for a single value (a number, see spectrumFromNumber) and the RGB-mode value
-/// of spectral/spectrum.h for tables (getSpectrum applies the version's rules).
+/// of spectral/spectrum.h for tables (getSpectrum applies the value's convention).
 SpectrumPtr spectrumFromValue(const SpectrumValue& v, SpectrumKind kind, const SourceLocation& loc);
 /// The RGB-mode rule of a scene's tabulated reflectance or emission (λ:v pairs, a .spd file, a
-/// regular/irregular plugin): rendered with the RGB value Mitsuba's RGB variant of the scene's
-/// version computes (spectral/mitsuba_rgb.h). Unbounded tables keep the channel-wavelength rule
+/// regular/irregular plugin): rendered with the RGB value the RGB variant of the Mitsuba of
+/// `convention` (the value's, or the plugin's `convention` parameter) computes (spectral/mitsuba_rgb.h). Unbounded tables keep the channel-wavelength rule
 /// (spectral/spectrum.h) except where a plugin asks for Mitsuba's (conductor eta/k,
 /// spectral/ior_params.cpp). Non-tabulated spectra are returned as they are.
-SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, int formatVersion);
+SpectrumPtr withSceneTableRGBModeValue(SpectrumPtr spec, SpectrumKind kind, MitsubaConvention convention);
 
 }  // namespace iris

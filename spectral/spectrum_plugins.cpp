@@ -20,7 +20,7 @@ std::vector<float> floatList(const Properties& p, const std::string& name) {
 /// A table with the RGB-mode rule of every tabulated scene spectrum (withSceneTableRGBModeValue).
 SpectrumPtr table(const Properties& p, std::vector<float> lambdas, std::vector<float> values, SpectrumKind kind) {
     SpectrumPtr s = withLocation(p.location(), [&] { return makePiecewiseLinearSpectrum(lambdas, values, kind); });
-    return withSceneTableRGBModeValue(std::move(s), kind, p.formatVersion());
+    return withSceneTableRGBModeValue(std::move(s), kind, getConvention(p));
 }
 
 /// `uniform`: `value` (default 1) at every wavelength; for an emitter the flat (equal-energy)

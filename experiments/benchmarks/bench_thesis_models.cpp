@@ -9,6 +9,7 @@
 #include "core/sampling.h"
 #include "materials/material.h"
 #include "materials/rough_plastic_tables.h"
+#include "render/loader/scene_upgrade.h"
 
 using namespace iris;
 
@@ -22,8 +23,11 @@ struct Instance {
 
 std::unique_ptr<Instance> make(const std::string& type, std::initializer_list<std::pair<std::string, PropertyValue>> params) {
     Properties p("bsdf", type, SourceLocation{"bench", 0});
-    p.setFormatVersion(0);  // the thesis' models: Mitsuba 0.6's roughplastic (docs/scene_format.md)
     for (const auto& [k, v] : params) p.set(k, v, SourceLocation{"bench", 0});
+    // The thesis' models as a version 0.x file's objects (Mitsuba 0.6's roughplastic;
+    // docs/scene_format.md): the upgrade pass's rules.
+    p.setFormatVersion(0);
+    upgradeObject(p);
     auto inst = std::make_unique<Instance>();
     inst->material = MaterialRegistry::instance().create(p);
     SampledWavelengths wl = SampledWavelengths::rgb(defaultChannelWavelengths());

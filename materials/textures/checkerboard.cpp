@@ -4,7 +4,9 @@
 // Mitsuba 2/3's float variant (eval_1, used where a float is read: roughness, weights, opacity)
 // has the opposite test, color0 where exactly one of them is > 0.5 (mitsuba3
 // src/textures/checkerboard.cpp, `eval` vs `eval_1`); Mitsuba 0.6 has only the spectral texture.
-// A float checkerboard of a version 2.x/3.x file therefore swaps the colours, one of 0.6 does not.
+// A float checkerboard therefore swaps the colours unless its `convention` is "mitsuba0.6"
+// (core/mitsuba_convention.h; the upgrade pass gives a version 0.x file's checkerboards that); the
+// spectral texture reads the parameter and is the same in both.
 #include "core/registry.h"
 #include "materials/textures/texture_params.h"
 #include "materials/textures/uv_transform.h"
@@ -21,7 +23,9 @@ inline bool firstColour(const vec2& uv) {
 class CheckerboardSpectrum final : public SpectrumTexture {
 public:
     CheckerboardSpectrum(const Properties& p, SpectrumKind kind)
-        : c0_(getSpectrumTexture(p, "color0", kind, 0.4f)), c1_(getSpectrumTexture(p, "color1", kind, 0.2f)), uv_(p) {}
+        : c0_(getSpectrumTexture(p, "color0", kind, 0.4f)), c1_(getSpectrumTexture(p, "color1", kind, 0.2f)), uv_(p) {
+        getConvention(p);  // checked; the same texture in both conventions (see the top of the file)
+    }
     SampledSpectrum eval(const TextureQuery& q, const SampledWavelengths& wl) const override {
         TextureQuery t = q;
         t.uv = uv_.apply(q.uv);
@@ -37,7 +41,7 @@ class CheckerboardFloat final : public FloatTexture {
 public:
     explicit CheckerboardFloat(const Properties& p)
         : c0_(getFloatTexture(p, "color0", 0.4f)), c1_(getFloatTexture(p, "color1", 0.2f)), uv_(p),
-          swapped_(p.formatVersion() >= 2) {}
+          swapped_(getConvention(p) == MitsubaConvention::Mitsuba3) {}
     float eval(const TextureQuery& q) const override {
         TextureQuery t = q;
         t.uv = uv_.apply(q.uv);

@@ -1,8 +1,9 @@
 // Latitude-longitude HDR environment map (Mitsuba "envmap"). Direction convention (Mitsuba): in
 // the light's frame, θ is measured from +y, φ = atan2(x, −z); u = φ/2π, v = θ/π.
 //
-// Radiance is interpolated bilinearly between texels placed as the scene's format version says
-// (render/lights/envmap_lattice.h: Mitsuba 0.6 for version 0.x files, Mitsuba 3 otherwise).
+// Radiance is interpolated bilinearly between texels placed as `convention` says
+// (render/lights/envmap_lattice.h; core/mitsuba_convention.h: "mitsuba3" by default, "mitsuba0.6"
+// in a version 0.x file, written by the upgrade pass).
 // Directions are importance sampled from a piecewise-constant density over a grid of cells in
 // (u, v) (pbrt-v4 §12.5.2), each weighted by the exact cell average of the interpolated luminance
 // × sinθ at the cell centre: a cell whose average is zero has zero radiance everywhere (the
@@ -15,7 +16,7 @@
 // once, on the first spectral lookup) and interpolated trilinearly. Because the RGB projection is
 // linear in the spectrum, the interpolated spectrum still projects exactly to the texel's RGB
 // (up to the corners' own fitting error). Between texels, spectra are interpolated as the
-// version's Mitsuba does (see lookup()).
+// convention's Mitsuba does (see lookup()).
 //
 // Cost (issue 37): every texel's scale, cell corners and corner weights are computed once, with
 // the grid (TexelShape); a lookup gathers the at most 16 corner nodes of its four texels, takes a
@@ -422,13 +423,13 @@ private:
 std::shared_ptr<Light> createEnvMap(const Properties& p) {
     const std::string file = p.getString("filename");
     Image img = withLocation(p.locationOf("filename"), [&] { return readImage(file); });
-    // Texel placement by format version (docs/scene_format.md): Mitsuba 3 puts the first and last
+    // Texel placement by convention (docs/scene_format.md): Mitsuba 3 puts the first and last
     // rows on the poles and, like Mitsuba 3, needs at least 2×3 texels; Mitsuba 0.6 any size.
-    const bool mitsuba3 = p.formatVersion() >= 2;
+    const bool mitsuba3 = getConvention(p) == MitsubaConvention::Mitsuba3;
     if (img.width < 1 || img.height < 1) failAt(p.locationOf("filename"), file, ": empty environment map");
     if (mitsuba3 && (img.width < 2 || img.height < 3))
-        failAt(p.locationOf("filename"), file, ": an environment map of a version ", p.formatVersion(),
-               " scene needs at least 2x3 pixels (Mitsuba 3's rule), this one is ", img.width, "x", img.height);
+        failAt(p.locationOf("filename"), file, ": an environment map needs at least 2x3 pixels (Mitsuba 3's rule; convention \"mitsuba0.6\" ",
+               "takes any size), this one is ", img.width, "x", img.height);
     const float scale = p.getFloat("scale", 1.0f);
     if (!(scale >= 0) || !std::isfinite(scale)) failAt(p.locationOf("scale"), "envmap scale must be a finite value >= 0");
     const EnvmapLattice lattice = mitsuba3 ? EnvmapLattice::mitsuba3(img.width, img.height) : EnvmapLattice::mitsuba06(img.width, img.height);

@@ -1,6 +1,7 @@
 #include "render/loader/scene_upgrade.h"
 
 #include <set>
+#include <utility>
 
 #include "core/xml/xml_values.h"
 #include "render/scene_defaults.h"
@@ -50,20 +51,53 @@ void perturbDefaults(Properties& p) {
         if (!p.has(name)) p.set(name, false, p.location());
 }
 
+/// The plugins with a model of each Mitsuba (docs/scene_format.md, "Version-dependent defaults"):
+/// each reads `convention` (core/mitsuba_convention.h) in every form of its parameters.
+bool hasTwoModels(const Properties& p) {
+    static const std::set<std::pair<std::string, std::string>> kTwoModels = {
+        {"bsdf", "roughplastic"}, {"bsdf", "blendbsdf"}, {"bsdf", "mask"},          {"bsdf", "conductor"},
+        {"bsdf", "roughconductor"}, {"texture", "checkerboard"}, {"emitter", "envmap"},
+        {"spectrum", "regular"},  {"spectrum", "irregular"}};
+    return kTwoModels.count({p.tag(), p.type()}) > 0;
+}
+
+/// Mitsuba 0.6's model where the two Mitsubas differ: `convention` "mitsuba0.6" on the plugins that
+/// have both (unless the scene gives one), and on every tabulated spectrum value (the RGB value
+/// Mitsuba 0.6's RGB build renders it with, spectral/mitsuba_rgb.h).
+void mitsuba06Models(Properties& p) {
+    if (hasTwoModels(p) && !p.has("convention"))
+        p.set("convention", std::string(conventionName(MitsubaConvention::Mitsuba06)), p.location());
+    for (const std::string& name : p.names()) {
+        const auto* s = std::get_if<SpectrumValue>(p.peek(name));
+        if (!s || (s->type != SpectrumValue::Type::Pairs && s->type != SpectrumValue::Type::File)) continue;
+        SpectrumValue table = *s;
+        table.convention = MitsubaConvention::Mitsuba06;
+        p.replace(name, std::move(table));
+    }
+}
+
+/// Mitsuba 0.6 has no principled plugin: a 0.x scene's `principled` is iris's Disney 2012 BRDF,
+/// `disney`, which `principled` meant before Mitsuba 3's model was added (materials/principled.h).
+void principledIsDisney(Properties& p) {
+    if (p.tag() == "bsdf" && p.type() == "principled") p.setType("disney");
+}
+
 void upgradeFromVersion0(Properties& p) {
     snakeCaseNames(p);
     singleValuedSpectraAsNumbers(p);
     conductorDefaults(p);
     perturbDefaults(p);
+    mitsuba06Models(p);
+    principledIsDisney(p);
 }
 
 /// Every object once, nested ones and <ref>erenced ones included.
-void upgradeObject(Properties& p, std::set<const Properties*>& done) {
+void upgradeObjectOnce(Properties& p, std::set<const Properties*>& done) {
     if (!done.insert(&p).second) return;
     if (p.formatVersion() < 2) upgradeFromVersion0(p);
     for (const std::string& name : p.names())
-        if (const auto* obj = std::get_if<PropertiesPtr>(p.peek(name))) upgradeObject(**obj, done);
-    for (const PropertiesPtr& child : p.children()) upgradeObject(*child, done);
+        if (const auto* obj = std::get_if<PropertiesPtr>(p.peek(name))) upgradeObjectOnce(**obj, done);
+    for (const PropertiesPtr& child : p.children()) upgradeObjectOnce(*child, done);
 }
 
 // ------------------------------------------------------------------ defaults (render/scene_defaults.h)
@@ -120,9 +154,14 @@ void fillDefaults(ParsedScene& scene) {
 
 }  // namespace
 
+void upgradeObject(Properties& p) {
+    std::set<const Properties*> done;
+    upgradeObjectOnce(p, done);
+}
+
 void upgradeScene(ParsedScene& scene) {
     std::set<const Properties*> done;
-    for (const PropertiesPtr& obj : scene.objects) upgradeObject(*obj, done);
+    for (const PropertiesPtr& obj : scene.objects) upgradeObjectOnce(*obj, done);
     fillDefaults(scene);
 }
 

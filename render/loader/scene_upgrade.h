@@ -13,10 +13,14 @@
 //          extEta → ext_ior; neither → ext_ior 1.000277 ("air", Mitsuba 0.6's default)
 //        normalmap, bumpmap: flip_invalid_normals and use_shadowing_function false unless given
 //          (Mitsuba 0.6's wrappers had neither option)
-//      Rules that choose between two Mitsubas' models (the RGB value of a tabulated spectrum,
-//      roughplastic, blendbsdf, checkerboard, mask, principled, the envmap's texel lattice) are no
-//      spelling: iris renders an old scene as the old Mitsuba did, so those plugins still read
-//      Properties::formatVersion (docs/scene_format.md, "Version-dependent defaults").
+//        principled → disney (Mitsuba 0.6 has none; iris's `principled` was Disney 2012 before)
+//      and rules that choose between the two Mitsubas' models, so that iris renders an old scene as
+//      the old Mitsuba did, are written as parameters the plugins read (core/mitsuba_convention.h):
+//        roughplastic, blendbsdf, mask, conductor, roughconductor, checkerboard, envmap and the
+//          regular/irregular spectra get `convention` "mitsuba0.6" unless the scene gives one
+//        every tabulated spectrum value (λ:v pairs, a .spd file) gets SpectrumValue::convention
+//          Mitsuba06 (its RGB-mode value, spectral/mitsuba_rgb.h)
+//      No plugin reads Properties::formatVersion (tests/architecture/check_format_version.py).
 //   2. Defaults (render/scene_defaults.h, the one table): a scene without <integrator> gets one,
 //      a scene without <sensor> gets one, a sensor without <film> or <sampler> gets them, a film
 //      without <rfilter> gets one.
@@ -31,5 +35,9 @@ namespace iris {
 /// Apply the version rules and fill the defaults, in place (see the file comment). Each object is
 /// upgraded once, also when several objects refer to it.
 void upgradeScene(ParsedScene& scene);
+
+/// The version rules alone, for one object and the objects nested in it (each by its own
+/// Properties::formatVersion): for objects built in code that stand for a file's.
+void upgradeObject(Properties& p);
 
 }  // namespace iris

@@ -10,6 +10,7 @@
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"
 #include "tests/support/error_of.h"
+#include "render/loader/scene_upgrade.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -28,6 +29,7 @@ BSDFInstance makeBlend(float weight, std::shared_ptr<Properties> first, std::sha
     second->setFormatVersion(version);
     props->addChild(first);
     props->addChild(second);
+    upgradeObject(*props);  // as the loader reads it (the version's convention)
     return makeBSDF(*props, kRGB);
 }
 

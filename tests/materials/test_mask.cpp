@@ -13,6 +13,7 @@
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"
 #include "tests/support/error_of.h"
+#include "render/loader/scene_upgrade.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -26,6 +27,7 @@ BSDFInstance makeMask(float opacity, float reflectance, int version = 3) {
     auto props = makeProps("mask", {{"opacity", opacity}});
     props->setFormatVersion(version);
     props->addChild(makeProps("diffuse", {{"reflectance", reflectance}}));
+    upgradeObject(*props);  // as the loader reads it (the version's convention)
     return makeBSDF(*props, kRGB);
 }
 

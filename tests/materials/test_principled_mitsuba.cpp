@@ -19,6 +19,7 @@
 #include "materials/principled_terms.h"
 #include "render/loader/scene_loader.h"
 #include "tests/support/bsdf_test_util.h"
+#include "render/loader/scene_upgrade.h"
 
 namespace iris {
 namespace {
@@ -280,6 +281,7 @@ TEST(PrincipledMitsuba, VersionZeroSceneIsDisney2012BitForBit) {
         auto p = test::makeProps(type, {{"base_color", RGBValue{vec3(0.3f, 0.6f, 0.8f)}}, {"roughness", 0.3f},
                                         {"clearcoat", 0.7f}, {"sheen", 0.4f}, {"metallic", 0.2f}});
         p->setFormatVersion(version);
+        upgradeObject(*p);  // as the loader reads it
         return makeBSDF(*p, SampledWavelengths::rgb(defaultChannelWavelengths()));
     };
     auto v0 = make("principled", 0), disney = make("disney", 3), v3 = make("principled", 3);

@@ -12,6 +12,7 @@
 #include "materials/thesis_rough_coat.h"
 #include "tests/support/bsdf_test_util.h"
 #include "tests/support/thesis_test_util.h"
+#include "render/loader/scene_upgrade.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -482,6 +483,8 @@ TEST(Proposed, ThesisModelsKeepMitsuba06RoughPlasticInEveryVersion) {
         }
         p06->setFormatVersion(0);
         p3->setFormatVersion(3);
+        upgradeObject(*p06);  // as the loader reads them
+        upgradeObject(*p3);
         const BSDFInstance a = makeBSDF(*p06, SampledWavelengths::rgb(defaultChannelWavelengths()));
         const BSDFInstance b = makeBSDF(*p3, SampledWavelengths::rgb(defaultChannelWavelengths()));
         int nonzero = 0;

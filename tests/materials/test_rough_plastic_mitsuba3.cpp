@@ -10,6 +10,7 @@
 #include "core/quadrature.h"
 #include "core/xml/xml_parser.h"
 #include "materials/rough_plastic_tables.h"
+#include "render/loader/scene_upgrade.h"
 #include "tests/support/bsdf_test_util.h"
 
 using namespace iris;
@@ -167,8 +168,9 @@ TEST(RoughPlasticMitsuba3, SceneVersionChoosesTheModel) {
                                 "<float name=\"specular_reflectance\" value=\"0\"/>"
                                 "<rgb name=\"diffuse_reflectance\" value=\"0.2, 0.5, 0.8\"/>"
                                 "<boolean name=\"nonlinear\" value=\"true\"/></bsdf></scene>";
-        const ParsedScene s = parseSceneString(xml, ".");
-        EXPECT_EQ(s.objects.size(), 1u);
+        ParsedScene s = parseSceneString(xml, ".");
+        upgradeScene(s);  // as the loader reads it: the version's convention
+        EXPECT_EQ(s.objects.size(), 3u);  // the bsdf, and the default sensor and integrator
         return makeBSDF(*s.objects.at(0), SampledWavelengths::rgb(defaultChannelWavelengths()));
     };
     const RoughTransmittanceTables& t = roughPlasticTables(MicrofacetType::GGX);

@@ -12,6 +12,7 @@
 #include "tests/support/render_test_scenes.h"
 #include "spectral/lane_dispatch.h"
 #include "spectral/spectrum_factory.h"
+#include "render/loader/scene_upgrade.h"
 
 using namespace iris;
 using namespace iris::testing;
@@ -175,6 +176,7 @@ LightPtr envmapFromImage(const Image& img, const std::string& name, int version 
     Properties p("emitter", "envmap", SourceLocation{"<test>", 7});
     p.setFormatVersion(version);
     p.set("filename", std::string(path), SourceLocation{"<test>", 8});
+    upgradeObject(p);  // as the loader reads it: the version's convention
     LightPtr light = LightRegistry::instance().create(p);
     std::remove(path.c_str());
     return light;

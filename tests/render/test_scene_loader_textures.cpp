@@ -13,6 +13,7 @@
 #include "core/registry.h"
 #include "materials/textures/bitmap.h"
 #include "spectral/spectrum_factory.h"
+#include "render/loader/scene_upgrade.h"
 
 namespace fs = std::filesystem;
 using namespace iris;
@@ -173,6 +174,7 @@ TEST(SceneLoaderTextures, Checkerboard) {
     // 14, item 3), the opposite of the spectrum-valued texture above.
     Properties pf("texture", "checkerboard", kLoc);
     pf.setFormatVersion(3);
+    upgradeObject(pf);
     const FloatTexturePtr f = FloatTextureRegistry::instance().create(pf);
     TextureQuery q;
     q.uv = {0.75f, 0.25f};
@@ -187,6 +189,7 @@ TEST(SceneLoaderTextures, Checkerboard) {
     po.setFormatVersion(0);
     po.set("uscale", 2.0f, kLoc);
     po.set("uoffset", 0.5f, kLoc);
+    upgradeObject(po);  // as the loader reads it: convention "mitsuba0.6"
     const FloatTexturePtr fo = FloatTextureRegistry::instance().create(po);
     q.uv = {0.1f, 0.25f};  // u' = 0.7, v' = 0.25 → color1
     EXPECT_FLOAT_EQ(fo->eval(q), 0.2f);

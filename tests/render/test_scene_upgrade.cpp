@@ -1,15 +1,19 @@
 // The upgrade pass (render/loader/scene_upgrade.h): a version 0.6 scene's spellings rewritten into
 // Mitsuba 3's, the defaults of render/scene_defaults.h filled in, each object once; and the parser's
-// refusal of an unsupported version with file and line.
+// refusal of an unsupported version with file and line; Mitsuba 0.6's models written as
+// `convention` parameters (core/mitsuba_convention.h), which plugins read instead of the version.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "core/error.h"
 #include "core/xml/xml_parser.h"
+#include "render/loader/scene_loader.h"
 #include "render/loader/scene_upgrade.h"
 #include "render/scene_defaults.h"
 #include "spectral/spectrum_params.h"
+#include "tests/support/bsdf_test_util.h"
+#include "tests/support/error_of.h"
 
 using namespace iris;
 
@@ -162,4 +166,68 @@ TEST(SceneUpgrade, AnUnsupportedVersionIsRefusedWithFileAndLine) {
         EXPECT_NE(e.find("<string>:1:"), std::string::npos) << v << ": " << e;
         EXPECT_NE(e.find(v == std::string("x") ? "" : "unsupported scene version"), std::string::npos) << e;
     }
+}
+
+TEST(SceneUpgrade, A06FileGetsMitsuba06sModelsAsConventionParameters) {
+    const std::string body =
+        "<bsdf type=\"roughplastic\" id=\"rp\"/>\n"
+        "<bsdf type=\"blendbsdf\" id=\"blend\"><bsdf type=\"diffuse\"/><bsdf type=\"mask\"><bsdf type=\"null\"/></bsdf></bsdf>\n"
+        "<bsdf type=\"roughplastic\" id=\"mine\"><string name=\"convention\" value=\"mitsuba3\"/></bsdf>\n"
+        "<emitter type=\"area\" id=\"e\"><spectrum name=\"radiance\" value=\"400:1, 700:2\"/></emitter>\n";
+    const ParsedScene s06 = upgraded("0.6.0", body), s3 = upgraded("3.0.0", body);
+    auto conventionOf = [](const Properties& p) -> std::string {
+        const auto* v = p.peek("convention");
+        return v ? std::get<std::string>(*v) : "";
+    };
+    const PropertiesPtr rp06 = first(s06, "bsdf"), rp3 = first(s3, "bsdf");
+    ASSERT_TRUE(rp06 && rp3);
+    EXPECT_EQ(conventionOf(*rp06), "mitsuba0.6");
+    EXPECT_EQ(conventionOf(*rp3), "");  // Mitsuba 3's models need nothing written
+    // Nested ones too, and only on the plugins with two models (a diffuse or null has one).
+    const PropertiesPtr blend06 = s06.objects[1];
+    EXPECT_EQ(conventionOf(*blend06), "mitsuba0.6");
+    EXPECT_EQ(conventionOf(*blend06->children()[0]), "");
+    EXPECT_EQ(conventionOf(*blend06->children()[1]), "mitsuba0.6");
+    EXPECT_EQ(conventionOf(*blend06->children()[1]->children()[0]), "");
+    // What the scene gives is kept.
+    EXPECT_EQ(conventionOf(*s06.objects[2]), "mitsuba3");
+    // A tabulated value carries Mitsuba 0.6's RGB rule in a 0.x file, Mitsuba 3's otherwise.
+    const auto radiance = [](const ParsedScene& s) { return std::get<SpectrumValue>(*first(s, "emitter")->peek("radiance")); };
+    EXPECT_EQ(radiance(s06).convention, MitsubaConvention::Mitsuba06);
+    EXPECT_EQ(radiance(s3).convention, MitsubaConvention::Mitsuba3);
+}
+
+TEST(SceneUpgrade, A06PrincipledIsDisney) {
+    EXPECT_EQ(first(upgraded("0.6.0", "<bsdf type=\"principled\"/>\n"), "bsdf")->type(), "disney");
+    EXPECT_EQ(first(upgraded("3.0.0", "<bsdf type=\"principled\"/>\n"), "bsdf")->type(), "principled");
+}
+
+TEST(SceneUpgrade, ConventionInA3FileIsThe06Model) {
+    // roughplastic's coat reflectance Fdr: Mitsuba 0.6's 1 − Td in a 0.x file, or in a 3.x file that
+    // asks for it; Mitsuba 3's R_int (a darker base, docs/scene_format.md) otherwise.
+    const std::initializer_list<test::Param> params = {{"alpha", 0.4f}, {"distribution", std::string("ggx")}};
+    const SampledWavelengths rgb = SampledWavelengths::rgb(defaultChannelWavelengths());
+    const test::BSDFInstance v0 = test::makeBSDFVersion(0, "roughplastic", params, rgb);
+    const test::BSDFInstance v3 = test::makeBSDFVersion(3, "roughplastic", params, rgb);
+    const test::BSDFInstance asked = test::makeBSDF(
+        "roughplastic", {{"alpha", 0.4f}, {"distribution", std::string("ggx")}, {"convention", std::string("mitsuba0.6")}}, rgb);
+    const vec3 wo = normalize(vec3(0.3f, 0.1f, 0.9f)), wi = normalize(vec3(-0.5f, 0.2f, 0.7f));
+    const float f0 = v0.bsdf->eval(wo, wi, TransportMode::Radiance)[0];
+    EXPECT_EQ(asked.bsdf->eval(wo, wi, TransportMode::Radiance)[0], f0);
+    EXPECT_LT(v3.bsdf->eval(wo, wi, TransportMode::Radiance)[0], 0.95f * f0);
+}
+
+TEST(SceneUpgrade, AnUnknownConventionIsRefusedWithItsLine) {
+    const std::string error = test::errorOf([] {
+        loadSceneFromString("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n<bsdf type=\"roughplastic\">\n"
+                            "<string name=\"convention\" value=\"mitsuba2\"/>\n</bsdf></shape></scene>", ".");
+    });
+    EXPECT_TRUE(test::contains(error, ":4:")) << error;
+    EXPECT_TRUE(test::contains(error, "unknown convention 'mitsuba2' (known: mitsuba3, mitsuba0.6)")) << error;
+    // A plugin with one model has no such parameter.
+    const std::string one = test::errorOf([] {
+        loadSceneFromString("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n<bsdf type=\"diffuse\">\n"
+                            "<string name=\"convention\" value=\"mitsuba0.6\"/>\n</bsdf></shape></scene>", ".");
+    });
+    EXPECT_TRUE(test::contains(one, "unknown parameter 'convention'")) << one;
 }

@@ -17,6 +17,7 @@
 #include "spectral/mitsuba_rgb.h"
 #include "spectral/piecewise_linear_spectrum.h"
 #include "spectral/spectrum_params.h"
+#include "render/loader/scene_upgrade.h"
 #include "spectral/wavelengths.h"
 #include "tests/support/bsdf_test_util.h"
 #include "tests/support/spectrum_pairs.h"
@@ -107,6 +108,7 @@ ConductorIOR conductor(const char* material, int version) {
     // Mitsuba 0.6's extEta, default air 1.000277, from the upgrade pass): 1 here, so that the
     // tables' own projection is seen.
     p.set("ext_ior", 1.0f, SourceLocation{"scene.xml", 5});
+    upgradeObject(p);  // as the loader reads it: the version's convention
     return readConductor(p);
 }
 
@@ -171,11 +173,14 @@ TEST(MitsubaRGB, SceneTablesFollowTheVersion) {
         emitter.set("radiance", radiance, SourceLocation{"scene.xml", 5});
         Properties bsdf = props("bsdf", "diffuse", version);
         bsdf.set("reflectance", reflectance, SourceLocation{"scene.xml", 6});
+        upgradeObject(emitter);  // as the loader reads them: the version's convention
+        upgradeObject(bsdf);
         const SampledSpectrum L = getSpectrum(emitter, "radiance", SpectrumKind::Illuminant)->sample(kRGB);
         const SampledSpectrum rho = getSpectrum(bsdf, "reflectance", SpectrumKind::Reflectance)->sample(kRGB);
         Properties cond = props("bsdf", "conductor", version);
         cond.set("eta", eta, SourceLocation{"scene.xml", 7});
         cond.set("k", 1.0f, SourceLocation{"scene.xml", 8});
+        upgradeObject(cond);
         const IOR etaIOR = readIOR(cond, "eta", IOR(), IorQuantity::ConductorOptics);
         const SampledSpectrum etaRGB = etaIOR.sample(kRGB);
         const std::string v = " (version " + std::to_string(version) + ")";

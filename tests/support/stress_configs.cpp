@@ -23,11 +23,6 @@ public:
         p_->addChild(c);
         return *this;
     }
-    /// The scene format version the object is read in (0 = Mitsuba 0.6).
-    P& version(int major) {
-        p_->setFormatVersion(major);
-        return *this;
-    }
     operator PropertiesPtr() const { return p_; }  // NOLINT: builder
 
 private:
@@ -444,7 +439,7 @@ MaterialStress blendbsdf() {
         {"w 1 diffuse + dielectric", b(1.0f, P("diffuse").f("reflectance", 1.0f), P("dielectric").f("int_ior", 1.5f))},
         {"w 0.3 roughdielectric a=1 + conductor", b(0.3f, P("roughdielectric").f("alpha", 1.0f),
                                                      P("conductor").f("eta", 4.0f).f("k", 10.0f))},
-        {"0.6: w 0.5 diffuse + roughconductor a=0.3", P("blendbsdf").version(0).f("weight", 0.5f)
+        {"0.6: w 0.5 diffuse + roughconductor a=0.3", P("blendbsdf").str("convention", "mitsuba0.6").f("weight", 0.5f)
                                                           .child(P("diffuse").f("reflectance", 1.0f))
                                                           .child(P("roughconductor").f("alpha", 0.3f))},
     });
@@ -462,7 +457,7 @@ MaterialStress mask() {
         {"opacity 0", m(0.0f, P("diffuse").f("reflectance", 1.0f))},
         {"opacity 1 roughconductor a=1e-4", m(1.0f, P("roughconductor").f("alpha", 1e-4f).str("material", "Au"))},
         {"opacity 0.5 dielectric", m(0.5f, P("dielectric").f("int_ior", 1.5f))},
-        {"0.6: per-channel opacity twosided", P("mask").version(0).rgb("opacity", 0.0f, 0.5f, 1.0f)
+        {"0.6: per-channel opacity twosided", P("mask").str("convention", "mitsuba0.6").rgb("opacity", 0.0f, 0.5f, 1.0f)
                                                   .child(P("twosided").child(P("diffuse").f("reflectance", 1.0f)))},
     });
     s.consistencyKnownIssue =
