@@ -466,7 +466,8 @@ TEST(ThinFilmMaterial, DispersiveFilmIndexFromSharedIORReader) {
 TEST(ThinFilmMaterial, ThicknessTexture) {
     // thickness from a checkerboard float texture: 200 nm where (u, v) < 0.5, 500 nm elsewhere.
     auto tex = std::make_shared<Properties>("texture", "checkerboard", SourceLocation{});
-    tex->setFormatVersion(0);  // Mitsuba 0.6's float checkerboard: color0 where u, v are both < 0.5
+    // Mitsuba 0.6's float checkerboard: color0 where u, v are both < 0.5.
+    tex->set("convention", std::string("mitsuba0.6"), {});
     tex->set("color0", 200.0f, {});
     tex->set("color1", 500.0f, {});
     const SampledWavelengths wl0 = spectralWl(0.44f, 4);
