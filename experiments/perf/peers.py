@@ -316,6 +316,23 @@ def timing_section(sbs: dict, found: dict) -> list[str]:
     return lines
 
 
+def lowest_error_line(per: dict, budgets: list[float]) -> str:
+    """The renderer with the lowest relMSE at each budget where every renderer was measured; a budget
+    outside some renderer's measured range names none (a renderer without a value there is not
+    beaten, only not measured)."""
+    best, partial = [], []
+    for b in budgets:
+        vals = {n: relmse_at(v["rows"], b) for n, v in per.items()}
+        if all(e is not None for e in vals.values()):
+            best.append(f"{b:g}s: {min(vals, key=vals.get)}")
+        else:
+            partial.append(f"{b:g}s")
+    line = "Lowest error per budget: " + (", ".join(best) if best else "none measured by every renderer")
+    if partial:
+        line += f" (not named at {', '.join(partial)}: not every renderer has a value there)"
+    return line + "."
+
+
 def equal_time_section(et: dict, args) -> list[str]:
     lines = ["", "## Equal time: relMSE of each renderer's best sampler against its own long reference", "",
              f"{args.et_width}×{args.et_height}, {args.threads} threads, sample counts {args.spp_list}, "
@@ -333,13 +350,7 @@ def equal_time_section(et: dict, args) -> list[str]:
                 row[f"{b:g}s"] = f"{e:.4g}" if e is not None else "—"
             rows.append(row)
         lines += [f"### {scene}", "", markdown_table(rows, ["renderer", *[f"{b:g}s" for b in budgets]]), ""]
-        best = {}
-        for b in budgets:
-            vals = {n: relmse_at(v["rows"], b) for n, v in per.items()}
-            vals = {n: e for n, e in vals.items() if e is not None}
-            if vals:
-                best[f"{b:g}s"] = min(vals, key=vals.get)
-        lines.append("Lowest error per budget: " + ", ".join(f"{b}: {n}" for b, n in best.items()) + ".")
+        lines.append(lowest_error_line(per, budgets))
         lines.append("")
     return lines
 

@@ -97,6 +97,16 @@ class PeersTest(unittest.TestCase):
         self.assertIsNone(peers.relmse_at(rows, 0.5))
         self.assertIsNone(peers.relmse_at(rows, 8.0))
 
+    def test_lowest_error_is_named_only_where_every_renderer_has_a_value(self):
+        per = {"iris": {"rows": [{"seconds": 0.5, "relmse": 0.4}, {"seconds": 4.0, "relmse": 0.05}]},
+               "slow": {"rows": [{"seconds": 1.0, "relmse": 0.1}, {"seconds": 8.0, "relmse": 0.01}]}}
+        line = peers.lowest_error_line(per, [0.5, 1.0, 2.0, 4.0, 8.0])
+        # At 1 s iris (interpolated 0.2) loses to slow (0.1); at 0.5 s and 8 s one has no value, so
+        # "slow" must not be named the winner at 8 s.
+        self.assertIn("1s: slow", line)
+        self.assertNotIn("8s: slow", line)
+        self.assertIn("not named at 0.5s, 8s", line)
+
     def test_side_by_side_with_stand_ins_skips_peers_not_given(self):
         (self.dir / "mitsuba").mkdir()
         (self.dir / "tungsten").mkdir()
