@@ -2,10 +2,13 @@
 // tangent-space normal map perturbs the shading normal of the glTF material it wraps.
 //   scaledNormal = normalize((sample · 2 − 1) · (scale, scale, 1))       (schema material.normalTextureInfo, scale)
 //   n' = normalize(x T + y B + z N),  B = (N × T) · w                   (§3.7.2.1 TANGENT: xyz, w = handedness)
-// T is the TANGENT attribute (mesh attribute kTangentAttribute, already in the shape's space) or,
-// without it, ∂p/∂u of the hit triangle from its UVs (the spec asks for MikkTSpace's per-vertex
-// tangents; docs/gltf.md says where the two differ), orthogonalised against N. The texture is read
-// linearly (not sRGB). The perturbed BSDF is iris's normal-map frame (materials/perturbed_frame.h)
+// T and w are the TANGENT attribute (mesh attribute kTangentAttribute, already in the shape's
+// space), interpolated and orthogonalised against N: the file's, or when the file has none the
+// per-vertex tangents the importer generates as the spec asks (MikkTSpace's, from positions,
+// normals and the normal texture's UVs; render/loader/gltf_tangents.h, docs/gltf.md says where
+// they may differ from the reference implementation). Only a mesh with no usable attribute (not
+// made by the glTF importer) falls back to ∂p/∂u of the hit triangle with w = 1. The texture is
+// read linearly (not sRGB). The perturbed BSDF is iris's normal-map frame (materials/perturbed_frame.h)
 // with flip_invalid_normals on and no shadowing term (glTF's BRDF has none).
 #pragma once
 

@@ -14,6 +14,7 @@
 #include "render/loader/gltf_material.h"
 #include "render/loader/gltf_mesh.h"
 #include "render/loader/gltf_scene.h"
+#include "render/loader/gltf_tangents.h"
 #include "render/sensors/sensor.h"
 #include "render/scene_defaults.h"
 
@@ -31,13 +32,17 @@ struct Primitive {
 
 void checkClosed(Document& doc, const Primitive& p);
 
-/// Every triangle primitive of mesh `m`, read once.
+/// Every triangle primitive of mesh `m`, read once. A primitive whose material has a normal
+/// texture and whose file has no TANGENT gets generated tangents (§3.7.2.1: MikkTSpace's, from
+/// the normal texture's UV set; render/loader/gltf_tangents.h); no other primitive pays for them.
 std::vector<Primitive> readMesh(Document& doc, gltf::MaterialCache& materials, int m) {
     std::vector<Primitive> out;
     const tinygltf::Mesh& mesh = doc.model.meshes[size_t(m)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
         if (std::optional<TriangleMesh> t = gltf::readPrimitive(doc, m, int(p))) {
-            out.push_back({std::move(*t), &materials.material(mesh.primitives[p].material)});
+            const gltf::ShapeMaterial& material = materials.material(mesh.primitives[p].material);
+            if (material.normalMapped && !t->findAttribute(gltf::kTangentAttribute)) gltf::generateTangents(*t, material.normalTexCoord);
+            out.push_back({std::move(*t), &material});
             checkClosed(doc, out.back());
         }
     return out;
@@ -60,8 +65,9 @@ ShapeDescription shapeOf(const Primitive& p, const mat4& toWorld, bool placed) {
 }
 
 /// Meshes that are written out rather than instanced: a shape group holds no emitters, and the
-/// TANGENT attribute a normal map reads is placed with its mesh (an instance transforms only the
-/// hit's position, normals and ∂p/∂u, render/instance_transform.cpp).
+/// TANGENT attribute a normal map reads (the file's or the generated one, so every normal-mapped
+/// primitive) is placed with its mesh (an instance transforms only the hit's position, normals and
+/// ∂p/∂u, render/instance_transform.cpp).
 bool notInstanced(const std::vector<Primitive>& prims) {
     return std::any_of(prims.begin(), prims.end(), [](const Primitive& p) {
         return p.material->emission || p.material->emissionTexture ||

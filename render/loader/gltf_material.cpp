@@ -206,6 +206,7 @@ ShapeMaterial MaterialCache::build(int index) {
         TexturePtr map = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, false, path + "/normalTexture");
         out.material = makeNormalMapped(out.material, std::move(map), float(m.normalTexture.scale));
         out.normalMapped = true;
+        out.normalTexCoord = m.normalTexture.texCoord;
     }
     // §3.9.3 emission, scaled by KHR_materials_emissive_strength.
     vec3 emissive(0.0f);

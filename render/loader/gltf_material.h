@@ -21,7 +21,8 @@ struct ShapeMaterial {
     SpectrumPtr emission;                // constant emission, or nullptr
     SpectrumTexturePtr emissionTexture;  // textured emission (then emission is nullptr)
     bool doubleSided = false;
-    bool normalMapped = false;  // has a normalTexture (which reads the TANGENT attribute when there is one)
+    bool normalMapped = false;  // has a normalTexture (which reads the TANGENT attribute, generated when the file has none)
+    int normalTexCoord = 0;     // the normalTexture's UV set (its texCoord), for generated tangents
     MediumPtr interior;         // KHR_materials_volume's absorbing medium, or nullptr
 };
 

@@ -2,7 +2,7 @@
 """Write the glTF test assets of tests/data/gltf/ (docs/gltf.md, "Test assets").
 
 Every file is made here from code: meshes (quads, boxes, UV spheres), tiny PNGs, the materials of
-each Khronos extension iris reads, a normal-mapped asset, a KHR_materials_volume slab, the iridescent sphere grids of experiments/industry_thin_film.py
+each Khronos extension iris reads, normal-mapped assets (one with mirrored UVs), a KHR_materials_volume slab, the iridescent sphere grids of experiments/industry_thin_film.py
 (after Khronos's IridescenceDielectricSpheres / IridescenceMetallicSpheres sample models, which
 sweep film thickness and IOR), and hostile files for the importer's error tests. Valid files pass
 the Khronos glTF-Validator (tests/gltf/validate.mjs); hostile ones are named bad_*.
@@ -290,6 +290,24 @@ def normal_mapped(b: Builder):
     b.light({"type": "directional", "intensity": 2}, {"rotation": [-0.3826834, 0, 0, 0.9238795]})
 
 
+def normal_mirrored(b: Builder):
+    """A mirrored pair of quads facing +y with normal_mapped.gltf's constant normal texture and no
+    TANGENT (tangents generated at import): u runs along +x on the left half (x in [−2, 0]) and
+    along −x on the right one (x in [0, 2]), mirrored about the seam x = 0 whose two vertices both
+    halves share; v runs along +z on both."""
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png(1, 1, [NORMAL_TEXEL])).decode()}]
+    b.doc["textures"] = [{"source": 0}]
+    mapped = b.material({"name": "mapped", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5},
+                         "normalTexture": {"index": 0, "scale": NORMAL_SCALE}})
+    pos = [(-2, 0, -1), (0, 0, -1), (2, 0, -1), (-2, 0, 1), (0, 0, 1), (2, 0, 1)]
+    uv = [(0, 0), (1, 0), (0, 0), (0, 1), (1, 1), (0, 1)]
+    idx = [0, 4, 1, 0, 3, 4, 1, 5, 2, 1, 4, 5]  # each half wound as quad(): counter-clockwise seen from +y
+    b.node({"mesh": b.mesh((pos, [(0, 1, 0)] * 6, uv, idx), mapped), "name": "mirrored"})
+    cam = b.camera([0, 6, 0], yfov=0.8, aspect=2.0)
+    b.doc["nodes"][cam]["rotation"] = [-0.7071068, 0, 0, 0.7071068]  # −90° about x: looking down −y
+    b.light({"type": "directional", "intensity": 2}, {"rotation": [-0.3826834, 0, 0, 0.9238795]})
+
+
 def iridescent_spheres(b: Builder, metallic: bool):
     """Khronos-style sweep: columns over film thickness, rows over film IOR (dielectric base) or
     base colour (metallic base, film IOR 1.5); sphere centres 1.1 apart."""
@@ -363,7 +381,8 @@ def main_into(out):
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     for name, make in [("basic", basic), ("instanced", instanced), ("strips_fans", strips_fans), ("textured", textured),
-                       ("extensions", extensions), ("volume_slab", volume_slab), ("normal_mapped", normal_mapped)]:
+                       ("extensions", extensions), ("volume_slab", volume_slab), ("normal_mapped", normal_mapped),
+                       ("normal_mirrored", normal_mirrored)]:
         b = Builder()
         make(b)
         b.write_gltf(out / f"{name}.gltf")

@@ -1,6 +1,6 @@
 // glTF normal and occlusion textures (§3.9.3; materials/gltf_normal_map.h, render/loader/
 // gltf_material.cpp) on normal_mapped.gltf of tests/gltf/make_assets.py: three flat quads facing
-// +y with one constant normal texture, with a TANGENT attribute, with tangents from the UVs, and
+// +y with one constant normal texture, with a TANGENT attribute, with tangents generated from the UVs, and
 // at scale 0. The shading normal a hit gets is compared with the spec's formula written out here:
 //   n' = normalize(x T + y B + z N), (x, y, z) = normalize((texel/255 · 2 − 1) · (s, s, 1)),
 //   B = (N × T) · w.
@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/source_tree.h"
+#include "materials/gltf_texture.h"
 #include "materials/perturbed_frame.h"
 #include "render/film.h"
 #include "render/loader/gltf_loader.h"
@@ -70,7 +71,7 @@ TEST(GltfNormalMap, ShadingNormalIsTheSpecsFormula) {
     const vec3 N(0, 1, 0);
     // TANGENT (0, 0, 1, w −1), turned by the node's 90° about y to +x.
     expectNear(shadingNormalAt(scene, -2.2f, 0.3f), specNormal(vec3(1, 0, 0), N, -1.0f, 0.5f), "TANGENT given");
-    // No TANGENT: T = ∂p/∂u = +x (u runs along x on the quad), w = 1.
+    // No TANGENT: the generated T = ∂p/∂u = +x (u runs along x on the quad), w = 1.
     expectNear(shadingNormalAt(scene, 0.2f, -0.4f), specNormal(vec3(1, 0, 0), N, 1.0f, 0.5f), "tangent from UVs");
     // Scale 0: the geometric normal.
     expectNear(shadingNormalAt(scene, 2.3f, 0.1f), N, "scale 0");
@@ -86,10 +87,18 @@ TEST(GltfNormalMap, TangentMappedMeshesAreNotInstanced) {
     const SceneDescription twice = fromMemory(replaced(json, "\"mesh\": 1,", "\"mesh\": 0,"), "nm.gltf");
     EXPECT_EQ(twice.shapes.size(), 3u);
     EXPECT_TRUE(twice.instances.empty());
-    // ... while the mesh without TANGENT, used twice, is instanced.
-    const SceneDescription inst = fromMemory(replaced(json, "\"mesh\": 0,", "\"mesh\": 1,"), "nm.gltf");
+    // ... and so is the mesh without TANGENT, whose tangents are generated at import (glTF
+    // §3.7.2.1, render/loader/gltf_tangents.h) and read as a TANGENT attribute ...
+    const std::string computedTwice = replaced(json, "\"mesh\": 0,", "\"mesh\": 1,");
+    const SceneDescription generated = fromMemory(computedTwice, "nm.gltf");
+    EXPECT_EQ(generated.shapes.size(), 3u);
+    EXPECT_TRUE(generated.instances.empty());
+    // ... while without the normal texture (no tangents needed, none generated) it is instanced.
+    const std::string unmapped = replaced(computedTwice, "\"normalTexture\": {\n    \"index\": 0,\n    \"scale\": 0.5\n   }", "\"doubleSided\": false");
+    const SceneDescription inst = fromMemory(unmapped, "nm.gltf");
     EXPECT_EQ(inst.shapes.size(), 1u);
     EXPECT_EQ(inst.instances.size(), 2u);
+    for (const ShapeDescription& s : inst.instances[0].group->shapes) EXPECT_EQ(s.mesh->findAttribute(gltf::kTangentAttribute), nullptr);
 }
 
 TEST(GltfNormalMap, BadNormalTexturesNameTheFileAndPath) {
