@@ -12,6 +12,9 @@
 //    transform (the 8 corners' bounds), which `use_grid_bbox` maps onto the unit cube.
 // The dense floats are charged to the memory budget (core/memory_budget.h) before they are
 // allocated, and the file's size is checked against it before OpenVDB reads it.
+// OpenVDB itself is linked only into a module loaded on the first read (core/io/vdb_module.h,
+// core/io/vdb_loader.h): this file reads the grid's shape through it, charges the budget,
+// allocates, then has the module fill the floats.
 #pragma once
 
 #include <string>
@@ -22,7 +25,7 @@ namespace iris {
 
 /// Throws iris::Error "path: ..." naming what is wrong (cannot read, no such grid and the grids
 /// there are, several grids and no name, unsupported value type, no active voxels, non-finite
-/// values, over the memory limit with the bytes it would need).
+/// values, over the memory limit with the bytes it would need, the OpenVDB module not loadable).
 VolumeGridData readVdbFile(const std::string& path, const std::string& gridName);
 
 /// True for a file name ending in ".vdb" (any case).
