@@ -260,7 +260,7 @@ ThinFilmStackResult ThinFilmCoating::exactFallback(int k, double cosTheta, bool 
     return clampEnergy(thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
 }
 
-void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
+uint32_t ThinFilmCoating::airyBatch(double cosTheta, bool below, const AiryBatchOutput& out) const {
     const int pad = airyStride_;
     alignas(32) double s2[kMaxWavelengths], y0s[kMaxWavelengths], y0p[kMaxWavelengths];
     if (!below) {
@@ -288,8 +288,12 @@ void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, 
     const AiryBatchInput in{airyArray(kN1Re), airyArray(kN1Im), airyArray(kInv1Re), airyArray(kInv1Im),
                             airyArray(kK0d), airyArray(AiryArray(sub)), airyArray(AiryArray(sub + 1)),
                             airyArray(AiryArray(sub + 2)), airyArray(AiryArray(sub + 3)), s2, y0s, y0p};
+    return airySingleFilmBatch(in, n_, out);
+}
+
+void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
     alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
-    uint32_t declined = airySingleFilmBatch(in, n_, AiryBatchOutput{Rs, Rp, Ts, Tp});
+    uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp});
     while (declined) {  // the rare entries the closed form declines: the transfer matrix (as exactAt)
         const int k = __builtin_ctz(declined);
         declined &= declined - 1;

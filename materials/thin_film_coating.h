@@ -116,6 +116,11 @@ public:
     FilmPolarization polarization(int k, double cosTheta, bool below = false) const;
     /// polarization(k, cosTheta, below).power without the cross terms: stackRT / stackRTFromBelow.
     ThinFilmStackResult polarizationPowers(int k, double cosTheta, bool below = false) const;
+    /// polarization (out[k]) and polarizationPowers (powers[k]) at every entry k < size() at once: an
+    /// exact single film through the batched kernel (spectral/thin_film_airy_batch.h), whose lanes
+    /// agree with the per-entry forms to rounding (relative 1e-14); other stacks entry by entry.
+    void polarizationAll(double cosTheta, bool below, FilmPolarization* out) const;
+    void polarizationPowersAll(double cosTheta, bool below, ThinFilmStackResult* powers) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }
@@ -160,6 +165,9 @@ private:
     }
     /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
     void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
+    /// The batched kernel's s and p powers at every entry (airy_ set): out's R, T arrays (and the
+    /// cross terms when out asks for them, AiryBatchOutput); returns the entries it declined.
+    uint32_t airyBatch(double cosTheta, bool below, const AiryBatchOutput& out) const;
     const ThinFilmCoatingSpec::RintCache* rint_ = nullptr;  // set when the cache applies to these wavelengths
     bool rgb_ = false;
 };

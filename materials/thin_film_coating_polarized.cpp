@@ -66,4 +66,38 @@ FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool belo
     return clamped(stackPolarization(lambda_[k], cosTheta, incident, std::span<const Layer>(rows, size_t(stride)), substrate));
 }
 
+void ThinFilmCoating::polarizationAll(double cosTheta, bool below, FilmPolarization* out) const {
+    requireSpectral(rgb_ || belcourBarla_);
+    if (!airy_) {
+        for (int k = 0; k < n_; ++k) out[k] = polarization(k, cosTheta, below);
+        return;
+    }
+    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+    alignas(32) double cRRe[kMaxWavelengths], cRIm[kMaxWavelengths], cTRe[kMaxWavelengths], cTIm[kMaxWavelengths];
+    const uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp, cRRe, cRIm, cTRe, cTIm});
+    for (int k = 0; k < n_; ++k) {
+        if (declined >> k & 1) {  // the transfer matrix, as polarization() falls back
+            out[k] = polarization(k, cosTheta, below);
+            continue;
+        }
+        FilmPolarization p;
+        p.power = {Rs[k], Rp[k], Ts[k], Tp[k]};
+        p.crossR = complexd(cRRe[k], cRIm[k]);
+        p.crossT = complexd(cTRe[k], cTIm[k]);
+        out[k] = clamped(p);
+    }
+}
+
+void ThinFilmCoating::polarizationPowersAll(double cosTheta, bool below, ThinFilmStackResult* powers) const {
+    requireSpectral(rgb_ || belcourBarla_);
+    if (!airy_) {
+        for (int k = 0; k < n_; ++k) powers[k] = polarizationPowers(k, cosTheta, below);
+        return;
+    }
+    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+    const uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp});
+    for (int k = 0; k < n_; ++k)
+        powers[k] = declined >> k & 1 ? polarizationPowers(k, cosTheta, below) : clampedPowers({Rs[k], Rp[k], Ts[k], Tp[k]});
+}
+
 }  // namespace iris

@@ -27,18 +27,20 @@ MuellerSpectrum layout(int n, Terms&& terms) {
 
 MuellerSpectrum coatingReflectionMueller(const ThinFilmCoating& c, float cosTheta, bool below, const vec3& m, const vec3& wi,
                                          const vec3& wo) {
+    FilmPolarization p[kMaxWavelengths];
+    c.polarizationAll(cosTheta, below, p);  // all wavelengths at once (the batched kernel)
     const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        const FilmPolarization p = c.polarization(k, cosTheta, below);
-        ps = p.power.Rs, pp = p.power.Rp, cross = p.crossR;
+        ps = p[k].power.Rs, pp = p[k].power.Rp, cross = p[k].crossR;
     });
     return fromSAxisBases(M, m, wi, wo);
 }
 
 MuellerSpectrum coatingTransmissionMueller(const ThinFilmCoating& c, float cosTheta, bool below, const vec3& m, const vec3& wi,
                                            const vec3& wo) {
+    FilmPolarization p[kMaxWavelengths];
+    c.polarizationAll(cosTheta, below, p);
     const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        const FilmPolarization p = c.polarization(k, cosTheta, below);
-        ps = p.power.Ts, pp = p.power.Tp, cross = p.crossT;
+        ps = p[k].power.Ts, pp = p[k].power.Tp, cross = p[k].crossT;
     });
     return fromSAxisBases(M, m, wi, wo);
 }
@@ -46,8 +48,11 @@ MuellerSpectrum coatingTransmissionMueller(const ThinFilmCoating& c, float cosTh
 MuellerSpectrum coatingDiffuseMueller(const ThinFilmCoating& c, const SampledSpectrum& base, const vec3& wi, const vec3& wo) {
     const int n = c.size();
     MuellerSpectrum M(n);
+    ThinFilmStackResult powersIn[kMaxWavelengths], powersOut[kMaxWavelengths];
+    c.polarizationPowersAll(wi.z, false, powersIn);
+    c.polarizationPowersAll(wo.z, false, powersOut);
     for (int k = 0; k < n; ++k) {
-        const ThinFilmStackResult in = c.polarizationPowers(k, wi.z), out = c.polarizationPowers(k, wo.z);
+        const ThinFilmStackResult &in = powersIn[k], &out = powersOut[k];
         // T is reciprocal per polarization: the exit through the stack at θo has the T_s, T_p of the
         // entry at θo (Born & Wolf §1.5; Mitsuba 3 pplastic.cpp: Ti · depolarizer · To).
         const double ai = 0.5 * (in.Ts + in.Tp), bi = 0.5 * (in.Ts - in.Tp);

@@ -27,6 +27,33 @@ struct vcomplex {
 };
 IRIS_LANES_INLINE vcomplex cmul(vcomplex a, vcomplex b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
 IRIS_LANES_INLINE Double4 cnorm(vcomplex a) { return a.re * a.re + a.im * a.im; }
+IRIS_LANES_INLINE vcomplex conj(vcomplex a) { return {a.re, -a.im}; }
+
+/// z/|z| lane-wise, 0 where |z| underflows to 0 (thin_film_polarization.cpp unitPhase).
+IRIS_LANES_INLINE vcomplex unitPhase(vcomplex z) {
+    const Double4 m = lanes::sqrt(cnorm(z));
+    const Long4 some = m > 0;
+    return {select(some, z.re / m, broadcast(0.0)), select(some, z.im / m, broadcast(0.0))};
+}
+
+/// The cross terms of airySingleFilmPolarizationAt (spectral/thin_film_polarization.cpp) from the
+/// lanes' num, den, |den|², y1 and clamped T, with the same operations in the same order.
+IRIS_LANES_INLINE void crossTerms(const vcomplex num[2], const vcomplex den[2], const Double4 dd[2], const vcomplex y1[2],
+                                  Double4 Ts, Double4 Tp, const AiryBatchOutput& out, int i) {
+    vcomplex r[2], phaseT[2];
+    for (int k = 0; k < 2; ++k) {
+        const vcomplex z = cmul(num[k], conj(den[k]));  // r = num/den = num·conj(den)/|den|²
+        r[k] = {z.re / dd[k], z.im / dd[k]};
+        phaseT[k] = unitPhase(cmul(y1[k], conj(den[k])));  // the phase of t ∝ y1/den
+    }
+    const vcomplex crossR = cmul(r[0], conj(r[1]));
+    const Double4 m = lanes::sqrt(lanes::max(broadcast(0.0), Ts * Tp));
+    const vcomplex phase = cmul(phaseT[0], conj(phaseT[1]));
+    lanes::store(out.crossRRe + i, crossR.re);
+    lanes::store(out.crossRIm + i, crossR.im);
+    lanes::store(out.crossTRe + i, m * phase.re);
+    lanes::store(out.crossTIm + i, m * phase.im);
+}
 
 /// waveFromRadicand (film_airy.h) lane-wise: q = sqrt(z) on the decaying branch (Im q ≥ 0). A real
 /// radicand takes the real square root (the same value as the scalar kernel, bit for bit); a complex
@@ -102,32 +129,36 @@ IRIS_LANES_INLINE int airyGroup(const AiryBatchInput& in, int i, const AiryBatch
     const vcomplex y1[2] = {q1, cmul(q1, {lanes::load(in.inv1Re + i), lanes::load(in.inv1Im + i)})};
     const vcomplex y2[2] = {q2, cmul(q2, {lanes::load(in.inv2Re + i), lanes::load(in.inv2Im + i)})};
     Long4 bad = {0, 0, 0, 0};
-    Double4 R[2], T[2];
+    Double4 R[2], T[2], dd[2];
+    vcomplex num[2], den[2];
     for (int k = 0; k < 2; ++k) {
         // num = y1 (y0 − y2) P + (y0 y2 − y1²) M,  den = y1 (y0 + y2) P + (y0 y2 + y1²) M
         // (the expanded Airy sum of film_airy.h, Born & Wolf §1.5.2 / §1.6.4).
         const vcomplex y1sq = cmul(y1[k], y1[k]);
         const vcomplex y02{y0[k] * y2[k].re, y0[k] * y2[k].im};
-        const vcomplex num = [&] {
+        num[k] = [&] {
             const vcomplex a = cmul(cmul(y1[k], {y0[k] - y2[k].re, -y2[k].im}), P);
             const vcomplex b = cmul({y02.re - y1sq.re, y02.im - y1sq.im}, M);
             return vcomplex{a.re + b.re, a.im + b.im};
         }();
-        const vcomplex den = [&] {
+        den[k] = [&] {
             const vcomplex a = cmul(cmul(y1[k], {y0[k] + y2[k].re, y2[k].im}), P);
             const vcomplex b = cmul({y02.re + y1sq.re, y02.im + y1sq.im}, M);
             return vcomplex{a.re + b.re, a.im + b.im};
         }();
-        const Double4 dd = cnorm(den);
-        R[k] = cnorm(num) / dd;
+        dd[k] = cnorm(den[k]);
+        R[k] = cnorm(num[k]) / dd[k];
         // T = Re(y2)/y0 |t|² = 16 y0 Re(y2) |y1|² |E| / |den|² (Macleod ch. 2).
-        T[k] = 16.0 * y0[k] * y2[k].re * cnorm(y1[k]) * absE / dd;
-        bad |= ~((dd > 1e-250) & (R[k] - R[k] == 0) & (T[k] - T[k] == 0));  // x − x ≠ 0: inf or NaN
+        T[k] = 16.0 * y0[k] * y2[k].re * cnorm(y1[k]) * absE / dd[k];
+        bad |= ~((dd[k] > 1e-250) & (R[k] - R[k] == 0) & (T[k] - T[k] == 0));  // x − x ≠ 0: inf or NaN
     }
+    const Double4 Ts = lanes::min(lanes::max(T[0], broadcast(0.0)), broadcast(1.0));  // std::clamp(T, 0, 1)
+    const Double4 Tp = lanes::min(lanes::max(T[1], broadcast(0.0)), broadcast(1.0));
     lanes::store(out.Rs + i, lanes::min(broadcast(1.0), R[0]));
     lanes::store(out.Rp + i, lanes::min(broadcast(1.0), R[1]));
-    lanes::store(out.Ts + i, lanes::min(lanes::max(T[0], broadcast(0.0)), broadcast(1.0)));  // std::clamp(T, 0, 1)
-    lanes::store(out.Tp + i, lanes::min(lanes::max(T[1], broadcast(0.0)), broadcast(1.0)));
+    lanes::store(out.Ts + i, Ts);
+    lanes::store(out.Tp + i, Tp);
+    if (out.crossRRe) crossTerms(num, den, dd, y1, Ts, Tp, out, i);
     return lanes::bits(bad);
 }
 

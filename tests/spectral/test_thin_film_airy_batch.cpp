@@ -12,6 +12,7 @@
 #include "core/arena.h"
 #include "spectral/thin_film_airy.h"
 #include "spectral/thin_film_airy_batch.h"
+#include "spectral/thin_film_polarization.h"
 #include "materials/thin_film_coating.h"
 #include "spectral/lane_dispatch.h"
 #include "tests/support/bsdf_test_util.h"
@@ -105,6 +106,46 @@ TEST(FilmAiryBatch, EveryLaneEqualsTheScalarKernel) {
     EXPECT_GT(complexLanes, 50000);
     std::cout << "lossless lanes " << lossless << ", complex lanes " << complexLanes << " (max |diff| "
               << maxComplexDiff << "), declined " << declined << "\n";
+}
+
+// The polarized mode's cross terms (AiryBatchOutput crossR, crossT) against the scalar
+// airySingleFilmPolarizationAt lane by lane, over the same random lanes: bit-identical where both
+// square roots are real, to rounding elsewhere; the powers are the same as without them.
+TEST(FilmAiryBatch, CrossTermsEqualTheScalarPolarizationKernel) {
+    std::mt19937 rng(20261207);
+    long compared = 0;
+    double maxComplexDiff = 0;
+    for (int trial = 0; trial < 5000; ++trial) {
+        const int n = 1 + trial % kMaxWavelengths;
+        Batch b;
+        LaneCase lanes[kMaxWavelengths];
+        for (int k = 0; k < airyPadded(n); ++k) {
+            lanes[k] = randomLane(rng);
+            b.set(k, lanes[k]);
+        }
+        double cross[4][kMaxWavelengths];
+        const AiryBatchInput in{b.v[0], b.v[1], b.v[2], b.v[3], b.v[4], b.v[5], b.v[6], b.v[7], b.v[8], b.v[9], b.v[10], b.v[11]};
+        const uint32_t mask = airySingleFilmBatch(
+            in, n, AiryBatchOutput{b.out[0], b.out[1], b.out[2], b.out[3], cross[0], cross[1], cross[2], cross[3]});
+        for (int k = 0; k < n; ++k) {
+            FilmPolarization p;
+            const bool ok = airySingleFilmPolarizationAt(lanes[k].angle, lanes[k].film, lanes[k].substrate, p);
+            ASSERT_EQ(ok, !(mask >> k & 1)) << "trial " << trial << " lane " << k;
+            if (!ok) continue;
+            const double got[8] = {b.out[0][k], b.out[1][k], b.out[2][k], b.out[3][k], cross[0][k], cross[1][k], cross[2][k], cross[3][k]};
+            const double want[8] = {p.power.Rs, p.power.Rp, p.power.Ts, p.power.Tp,
+                                    p.crossR.real(), p.crossR.imag(), p.crossT.real(), p.crossT.imag()};
+            for (int q = 0; q < 8; ++q) {
+                if (lanes[k].lossless)
+                    ASSERT_EQ(got[q], want[q]) << "lossless lane, trial " << trial << " lane " << k << " output " << q;
+                else
+                    maxComplexDiff = std::max(maxComplexDiff, std::abs(got[q] - want[q]));
+            }
+            ++compared;
+        }
+    }
+    EXPECT_LE(maxComplexDiff, 1e-12);
+    EXPECT_GT(compared, 50000);
 }
 
 TEST(FilmAiryBatch, BaselineAndAvx2BuildsAgreeBitForBit) {
@@ -202,4 +243,44 @@ TEST(FilmAiryBatch, ThinFilmCoatingBatchedEqualsPerEntry) {
 }
 
 }  // namespace
+
+// ThinFilmCoating::polarizationAll / polarizationPowersAll (the batched kernel) against the
+// per-entry polarization / polarizationPowers, from above and below, on an absorbing film over
+// glass and a film on gold.
+TEST(FilmAiryBatch, CoatingPolarizationAllEqualsPerEntry) {
+    const std::vector<std::pair<const char*, std::shared_ptr<Properties>>> cases = {
+        {"absorbing film on glass",
+         test::makeProps("thinfilm", {{"film_ior", 1.8f}, {"film_k", 0.05f}, {"thickness", 250.0f}, {"substrate_eta", 1.4f}})},
+        {"film on gold",
+         test::makeProps("thinfilm", {{"film_ior", 1.45f}, {"thickness", 320.0f}, {"substrate_material", std::string("Au")}})},
+    };
+    for (const auto& [what, props] : cases) {
+        const ThinFilmCoatingSpec spec = ThinFilmCoatingSpec::fromProperties(*props, 1.5f, 0.0f);
+        for (int n : {1, 4, 7, 16}) {
+            const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.37f, n);
+            Arena arena;
+            const ThinFilmCoating coat(spec, TextureQuery{}, wl, arena);
+            for (double cosTheta : {1.0, 0.6, 0.05, 0.0})
+                for (bool below : {false, true}) {
+                    if (below && std::string(what) == "film on gold") continue;  // an opaque substrate is not lit from below
+                    FilmPolarization all[kMaxWavelengths];
+                    ThinFilmStackResult powers[kMaxWavelengths];
+                    coat.polarizationAll(cosTheta, below, all);
+                    coat.polarizationPowersAll(cosTheta, below, powers);
+                    for (int k = 0; k < n; ++k) {
+                        const FilmPolarization one = coat.polarization(k, cosTheta, below);
+                        const ThinFilmStackResult p = coat.polarizationPowers(k, cosTheta, below);
+                        const double got[8] = {all[k].power.Rs, all[k].power.Rp, all[k].power.Ts, all[k].power.Tp,
+                                               all[k].crossR.real(), all[k].crossR.imag(), all[k].crossT.real(), all[k].crossT.imag()};
+                        const double want[8] = {one.power.Rs, one.power.Rp, one.power.Ts, one.power.Tp,
+                                                one.crossR.real(), one.crossR.imag(), one.crossT.real(), one.crossT.imag()};
+                        for (int q = 0; q < 8; ++q) EXPECT_NEAR(got[q], want[q], 1e-12) << what << " n " << n << " k " << k << " q " << q;
+                        EXPECT_NEAR(powers[k].Rs, p.Rs, 1e-12);
+                        EXPECT_NEAR(powers[k].Tp, p.Tp, 1e-12);
+                    }
+                }
+        }
+    }
+}
+
 }  // namespace iris
