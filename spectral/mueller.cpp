@@ -27,17 +27,27 @@ MuellerSpectrum rotateBases(const MuellerSpectrum& m, const BasisRotation& in, c
 MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& in, const BasisRotation& out) {
     if (m.depolarizing()) return m;
     MuellerSpectrum r = m;
+    // Lane loops over the entries' padded lanes (no SampledSpectrum temporaries: this runs at every
+    // polarized vertex with a dense matrix); the same float operations in the same order as the
+    // spectrum arithmetic they replace, so the same values.
+    const int padded = SampledSpectrum::paddedSize(m.size());
     // R_out · M (rotator rows 1 and 2: [c, s] and [−s, c]; Mitsuba 3 mueller::rotate_mueller_basis).
     for (int j = 0; j < 4; ++j) {
-        const SampledSpectrum a = m(1, j), b = m(2, j);
-        r(1, j) = a * out.c2 + b * out.s2;
-        r(2, j) = b * out.c2 - a * out.s2;
+        const float *a = m(1, j).lanes(), *b = m(2, j).lanes();
+        float *r1 = r(1, j).lanes(), *r2 = r(2, j).lanes();
+        for (int l = 0; l < padded; ++l) {
+            r1[l] = a[l] * out.c2 + b[l] * out.s2;
+            r2[l] = b[l] * out.c2 - a[l] * out.s2;
+        }
     }
     // (R_out M) · R_inᵀ (columns 1 and 2).
     for (int i = 0; i < 4; ++i) {
-        const SampledSpectrum a = r(i, 1), b = r(i, 2);
-        r(i, 1) = a * in.c2 + b * in.s2;
-        r(i, 2) = b * in.c2 - a * in.s2;
+        float *c1 = r(i, 1).lanes(), *c2 = r(i, 2).lanes();
+        for (int l = 0; l < padded; ++l) {
+            const float a = c1[l], b = c2[l];
+            c1[l] = a * in.c2 + b * in.s2;
+            c2[l] = b * in.c2 - a * in.s2;
+        }
     }
     return r;
 }
