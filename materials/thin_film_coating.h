@@ -116,11 +116,19 @@ public:
     FilmPolarization polarization(int k, double cosTheta, bool below = false) const;
     /// polarization(k, cosTheta, below).power without the cross terms: stackRT / stackRTFromBelow.
     ThinFilmStackResult polarizationPowers(int k, double cosTheta, bool below = false) const;
-    /// polarization (out[k]) and polarizationPowers (powers[k]) at every entry k < size() at once: an
-    /// exact single film through the batched kernel (spectral/thin_film_airy_batch.h), whose lanes
-    /// agree with the per-entry forms to rounding (relative 1e-14); other stacks entry by entry.
-    void polarizationAll(double cosTheta, bool below, FilmPolarization* out) const;
-    void polarizationPowersAll(double cosTheta, bool below, ThinFilmStackResult* powers) const;
+    /// Every entry's polarization terms, structure of arrays (entry k at index k; left
+    /// uninitialised: a vertex fills one per evaluation).
+    struct PolarizationLanes {
+        alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+        alignas(32) double crossRRe[kMaxWavelengths], crossRIm[kMaxWavelengths], crossTRe[kMaxWavelengths],
+            crossTIm[kMaxWavelengths];
+    };
+    /// polarization at every entry k < size() at once (polarizationPowersAll: polarizationPowers,
+    /// the powers only): an exact single film through the batched kernel
+    /// (spectral/thin_film_airy_batch.h), whose lanes agree with the per-entry forms to rounding
+    /// (relative 1e-14), other stacks and declined entries entry by entry.
+    void polarizationAll(double cosTheta, bool below, PolarizationLanes& out) const;
+    void polarizationPowersAll(double cosTheta, bool below, PolarizationLanes& out) const;
 
     double extIor() const { return extIor_; }
     complexd substrateIor(int k) const { return substrate_[k]; }

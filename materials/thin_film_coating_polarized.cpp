@@ -13,28 +13,6 @@ namespace iris {
 
 namespace {
 
-/// The powers clamped as the coating clamps them (R ∈ [0, 1], T ∈ [0, 1 − R]).
-ThinFilmStackResult clampedPowers(ThinFilmStackResult r) {
-    r.Rs = std::clamp(r.Rs, 0.0, 1.0);
-    r.Rp = std::clamp(r.Rp, 0.0, 1.0);
-    r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
-    r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
-    return r;
-}
-
-/// clampedPowers, and the cross terms kept within √(P_s P_p) (their magnitude for a coherent sum).
-FilmPolarization clamped(FilmPolarization p) {
-    p.power = clampedPowers(p.power);
-    const ThinFilmStackResult& r = p.power;
-    auto bound = [](complexd c, double limit) {
-        const double m = std::sqrt(std::norm(c));  // |c| without hypot's overflow guard: |c| ≤ ~1 here
-        return m > limit && m > 0 ? c * (limit / m) : c;
-    };
-    p.crossR = bound(p.crossR, std::sqrt(r.Rs * r.Rp));
-    p.crossT = bound(p.crossT, std::sqrt(r.Ts * r.Tp));
-    return p;
-}
-
 void requireSpectral(bool rgb) {
     if (rgb) fail("the polarized mode is spectral: a thin film in RGB mode has no polarization terms");
 }
@@ -51,7 +29,7 @@ FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool belo
     if (airy_) {  // exact single film: the closed form from the hoisted constants, as exactAt
         const AiryAngle angle = airyAngle(cosTheta, below ? substrate_[k].real() : extIor_);
         FilmPolarization p;
-        if (airySingleFilmPolarizationAt(angle, airyFilm(k), airySubstrate(k, below), p)) return clamped(p);
+        if (airySingleFilmPolarizationAt(angle, airyFilm(k), airySubstrate(k, below), p)) return clampedPolarization(p);
     }
     const int stride = 1 + nExtra_;
     Layer rows[9];
@@ -62,42 +40,42 @@ FilmPolarization ThinFilmCoating::polarization(int k, double cosTheta, bool belo
     const double incident = below ? substrate_[k].real() : extIor_;
     const complexd substrate = below ? complexd(extIor_, 0.0) : substrate_[k];
     if (nExtra_ == 0)
-        return clamped(singleFilmPolarization(mode_, bounces_, lambda_[k], cosTheta, incident, rows[0], substrate));
-    return clamped(stackPolarization(lambda_[k], cosTheta, incident, std::span<const Layer>(rows, size_t(stride)), substrate));
+        return clampedPolarization(singleFilmPolarization(mode_, bounces_, lambda_[k], cosTheta, incident, rows[0], substrate));
+    return clampedPolarization(stackPolarization(lambda_[k], cosTheta, incident, std::span<const Layer>(rows, size_t(stride)), substrate));
 }
 
-void ThinFilmCoating::polarizationAll(double cosTheta, bool below, FilmPolarization* out) const {
+void ThinFilmCoating::polarizationAll(double cosTheta, bool below, PolarizationLanes& out) const {
     requireSpectral(rgb_ || belcourBarla_);
-    if (!airy_) {
-        for (int k = 0; k < n_; ++k) out[k] = polarization(k, cosTheta, below);
-        return;
+    uint32_t perEntry = n_ >= 32 ? ~0u : (1u << n_) - 1;  // entries the kernel does not give
+    if (airy_)  // the kernel writes the clamped terms straight into `out` (AiryBatchOutput)
+        perEntry = airyBatch(cosTheta, below, AiryBatchOutput{out.Rs, out.Rp, out.Ts, out.Tp, out.crossRRe, out.crossRIm,
+                                                              out.crossTRe, out.crossTIm});
+    while (perEntry) {  // other stacks, and the entries the closed form declines (as polarization())
+        const int k = __builtin_ctz(perEntry);
+        perEntry &= perEntry - 1;
+        const FilmPolarization p = polarization(k, cosTheta, below);
+        out.Rs[k] = p.power.Rs, out.Rp[k] = p.power.Rp, out.Ts[k] = p.power.Ts, out.Tp[k] = p.power.Tp;
+        out.crossRRe[k] = p.crossR.real(), out.crossRIm[k] = p.crossR.imag();
+        out.crossTRe[k] = p.crossT.real(), out.crossTIm[k] = p.crossT.imag();
     }
-    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
-    alignas(32) double cRRe[kMaxWavelengths], cRIm[kMaxWavelengths], cTRe[kMaxWavelengths], cTIm[kMaxWavelengths];
-    const uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp, cRRe, cRIm, cTRe, cTIm});
-    for (int k = 0; k < n_; ++k) {
-        if (declined >> k & 1) {  // the transfer matrix, as polarization() falls back
-            out[k] = polarization(k, cosTheta, below);
-            continue;
+}
+
+void ThinFilmCoating::polarizationPowersAll(double cosTheta, bool below, PolarizationLanes& out) const {
+    requireSpectral(rgb_ || belcourBarla_);
+    uint32_t perEntry = n_ >= 32 ? ~0u : (1u << n_) - 1;
+    if (airy_) {
+        perEntry = airyBatch(cosTheta, below, AiryBatchOutput{out.Rs, out.Rp, out.Ts, out.Tp});
+        for (int k = 0; k < n_; ++k) {  // clampedPowers: the kernel's R, T ∈ [0, 1]; T ≤ 1 − R remains
+            out.Ts[k] = std::min(out.Ts[k], 1.0 - out.Rs[k]);
+            out.Tp[k] = std::min(out.Tp[k], 1.0 - out.Rp[k]);
         }
-        FilmPolarization p;
-        p.power = {Rs[k], Rp[k], Ts[k], Tp[k]};
-        p.crossR = complexd(cRRe[k], cRIm[k]);
-        p.crossT = complexd(cTRe[k], cTIm[k]);
-        out[k] = clamped(p);
     }
-}
-
-void ThinFilmCoating::polarizationPowersAll(double cosTheta, bool below, ThinFilmStackResult* powers) const {
-    requireSpectral(rgb_ || belcourBarla_);
-    if (!airy_) {
-        for (int k = 0; k < n_; ++k) powers[k] = polarizationPowers(k, cosTheta, below);
-        return;
+    while (perEntry) {
+        const int k = __builtin_ctz(perEntry);
+        perEntry &= perEntry - 1;
+        const ThinFilmStackResult p = polarizationPowers(k, cosTheta, below);
+        out.Rs[k] = p.Rs, out.Rp[k] = p.Rp, out.Ts[k] = p.Ts, out.Tp[k] = p.Tp;
     }
-    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
-    const uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp});
-    for (int k = 0; k < n_; ++k)
-        powers[k] = declined >> k & 1 ? polarizationPowers(k, cosTheta, below) : clampedPowers({Rs[k], Rp[k], Ts[k], Tp[k]});
 }
 
 }  // namespace iris

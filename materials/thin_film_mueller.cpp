@@ -27,20 +27,20 @@ MuellerSpectrum layout(int n, Terms&& terms) {
 
 MuellerSpectrum coatingReflectionMueller(const ThinFilmCoating& c, float cosTheta, bool below, const vec3& m, const vec3& wi,
                                          const vec3& wo) {
-    FilmPolarization p[kMaxWavelengths];
+    ThinFilmCoating::PolarizationLanes p;
     c.polarizationAll(cosTheta, below, p);  // all wavelengths at once (the batched kernel)
     const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        ps = p[k].power.Rs, pp = p[k].power.Rp, cross = p[k].crossR;
+        ps = p.Rs[k], pp = p.Rp[k], cross = complexd(p.crossRRe[k], p.crossRIm[k]);
     });
     return fromSAxisBases(M, m, wi, wo);
 }
 
 MuellerSpectrum coatingTransmissionMueller(const ThinFilmCoating& c, float cosTheta, bool below, const vec3& m, const vec3& wi,
                                            const vec3& wo) {
-    FilmPolarization p[kMaxWavelengths];
+    ThinFilmCoating::PolarizationLanes p;
     c.polarizationAll(cosTheta, below, p);
     const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        ps = p[k].power.Ts, pp = p[k].power.Tp, cross = p[k].crossT;
+        ps = p.Ts[k], pp = p.Tp[k], cross = complexd(p.crossTRe[k], p.crossTIm[k]);
     });
     return fromSAxisBases(M, m, wi, wo);
 }
@@ -48,11 +48,11 @@ MuellerSpectrum coatingTransmissionMueller(const ThinFilmCoating& c, float cosTh
 MuellerSpectrum coatingDiffuseMueller(const ThinFilmCoating& c, const SampledSpectrum& base, const vec3& wi, const vec3& wo) {
     const int n = c.size();
     MuellerSpectrum M(n);
-    ThinFilmStackResult powersIn[kMaxWavelengths], powersOut[kMaxWavelengths];
-    c.polarizationPowersAll(wi.z, false, powersIn);
-    c.polarizationPowersAll(wo.z, false, powersOut);
+    ThinFilmCoating::PolarizationLanes pin, pout;
+    c.polarizationPowersAll(wi.z, false, pin);
+    c.polarizationPowersAll(wo.z, false, pout);
     for (int k = 0; k < n; ++k) {
-        const ThinFilmStackResult &in = powersIn[k], &out = powersOut[k];
+        const ThinFilmStackResult in{pin.Rs[k], pin.Rp[k], pin.Ts[k], pin.Tp[k]}, out{pout.Rs[k], pout.Rp[k], pout.Ts[k], pout.Tp[k]};
         // T is reciprocal per polarization: the exit through the stack at θo has the T_s, T_p of the
         // entry at θo (Born & Wolf §1.5; Mitsuba 3 pplastic.cpp: Ti · depolarizer · To).
         const double ai = 0.5 * (in.Ts + in.Tp), bi = 0.5 * (in.Ts - in.Tp);

@@ -36,23 +36,37 @@ IRIS_LANES_INLINE vcomplex unitPhase(vcomplex z) {
     return {select(some, z.re / m, broadcast(0.0)), select(some, z.im / m, broadcast(0.0))};
 }
 
-/// The cross terms of airySingleFilmPolarizationAt (spectral/thin_film_polarization.cpp) from the
-/// lanes' num, den, |den|², y1 and clamped T, with the same operations in the same order.
-IRIS_LANES_INLINE void crossTerms(const vcomplex num[2], const vcomplex den[2], const Double4 dd[2], const vcomplex y1[2],
-                                  Double4 Ts, Double4 Tp, const AiryBatchOutput& out, int i) {
+/// c scaled down to magnitude `limit` where it exceeds it (clampedPolarization's bound).
+IRIS_LANES_INLINE vcomplex bounded(vcomplex c, Double4 limit) {
+    const Double4 m = lanes::sqrt(cnorm(c));
+    const Long4 over = (m > limit) & (m > 0);
+    const Double4 k = limit / m;
+    return {select(over, c.re * k, c.re), select(over, c.im * k, c.im)};
+}
+
+/// clampedPolarization(airySingleFilmPolarizationAt(...)) (spectral/thin_film_polarization.cpp)
+/// from the lanes' num, den, |den|², y1 and kernel-clamped R and T, with the same operations in the
+/// same order: the powers, then T ≤ 1 − R, then the cross terms bounded by the clamped powers.
+IRIS_LANES_INLINE void polarizedTerms(const vcomplex num[2], const vcomplex den[2], const Double4 dd[2], const vcomplex y1[2],
+                                      Double4 Rs, Double4 Rp, Double4 Ts, Double4 Tp, const AiryBatchOutput& out, int i) {
     vcomplex r[2], phaseT[2];
     for (int k = 0; k < 2; ++k) {
         const vcomplex z = cmul(num[k], conj(den[k]));  // r = num/den = num·conj(den)/|den|²
         r[k] = {z.re / dd[k], z.im / dd[k]};
         phaseT[k] = unitPhase(cmul(y1[k], conj(den[k])));  // the phase of t ∝ y1/den
     }
-    const vcomplex crossR = cmul(r[0], conj(r[1]));
-    const Double4 m = lanes::sqrt(lanes::max(broadcast(0.0), Ts * Tp));
     const vcomplex phase = cmul(phaseT[0], conj(phaseT[1]));
+    const Double4 m = lanes::sqrt(lanes::max(broadcast(0.0), Ts * Tp));
+    // clampedPowers (R is already in [0, 1]), then the bounds.
+    const Double4 TsC = lanes::min(Ts, 1.0 - Rs), TpC = lanes::min(Tp, 1.0 - Rp);
+    const vcomplex crossR = bounded(cmul(r[0], conj(r[1])), lanes::sqrt(Rs * Rp));
+    const vcomplex crossT = bounded({m * phase.re, m * phase.im}, lanes::sqrt(TsC * TpC));
+    lanes::store(out.Ts + i, TsC);
+    lanes::store(out.Tp + i, TpC);
     lanes::store(out.crossRRe + i, crossR.re);
     lanes::store(out.crossRIm + i, crossR.im);
-    lanes::store(out.crossTRe + i, m * phase.re);
-    lanes::store(out.crossTIm + i, m * phase.im);
+    lanes::store(out.crossTRe + i, crossT.re);
+    lanes::store(out.crossTIm + i, crossT.im);
 }
 
 /// waveFromRadicand (film_airy.h) lane-wise: q = sqrt(z) on the decaying branch (Im q ≥ 0). A real
@@ -154,11 +168,15 @@ IRIS_LANES_INLINE int airyGroup(const AiryBatchInput& in, int i, const AiryBatch
     }
     const Double4 Ts = lanes::min(lanes::max(T[0], broadcast(0.0)), broadcast(1.0));  // std::clamp(T, 0, 1)
     const Double4 Tp = lanes::min(lanes::max(T[1], broadcast(0.0)), broadcast(1.0));
-    lanes::store(out.Rs + i, lanes::min(broadcast(1.0), R[0]));
-    lanes::store(out.Rp + i, lanes::min(broadcast(1.0), R[1]));
-    lanes::store(out.Ts + i, Ts);
-    lanes::store(out.Tp + i, Tp);
-    if (out.crossRRe) crossTerms(num, den, dd, y1, Ts, Tp, out, i);
+    const Double4 Rs = lanes::min(broadcast(1.0), R[0]), Rp = lanes::min(broadcast(1.0), R[1]);
+    lanes::store(out.Rs + i, Rs);
+    lanes::store(out.Rp + i, Rp);
+    if (out.crossRRe) {
+        polarizedTerms(num, den, dd, y1, Rs, Rp, Ts, Tp, out, i);
+    } else {
+        lanes::store(out.Ts + i, Ts);
+        lanes::store(out.Tp + i, Tp);
+    }
     return lanes::bits(bad);
 }
 

@@ -26,9 +26,10 @@ struct AiryBatchInput {
 };
 
 /// Outputs (each array airyPadded(n) long): R and T for s and p, clamped as airySingleFilmFastAt
-/// clamps them (R ≤ 1, 0 ≤ T ≤ 1). The polarized mode's cross terms (spectral/thin_film_polarization.h,
-/// as airySingleFilmPolarizationAt computes them: r_s r_p*, and √(T_s T_p) times the phase of
-/// t_s t_p* with the clamped T) when crossR and crossT are set (real and imaginary parts).
+/// clamps them (R ≤ 1, 0 ≤ T ≤ 1). When crossR and crossT are set (real and imaginary parts), the
+/// polarized mode's terms instead: clampedPolarization(airySingleFilmPolarizationAt(...))
+/// (spectral/thin_film_polarization.h), i.e. T also ≤ 1 − R, and the cross terms r_s r_p* and
+/// √(T_s T_p)·phase(t_s t_p*) bounded by √ of the clamped powers.
 struct AiryBatchOutput {
     double *Rs, *Rp, *Ts, *Tp;
     double *crossRRe = nullptr, *crossRIm = nullptr, *crossTRe = nullptr, *crossTIm = nullptr;

@@ -107,6 +107,26 @@ StackAmplitudes thinFilmStackAmplitudes(double lambdaNm, double cosThetaIncident
     return a;
 }
 
+ThinFilmStackResult clampedPowers(ThinFilmStackResult r) {
+    r.Rs = std::clamp(r.Rs, 0.0, 1.0);
+    r.Rp = std::clamp(r.Rp, 0.0, 1.0);
+    r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
+    r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
+    return r;
+}
+
+FilmPolarization clampedPolarization(FilmPolarization p) {
+    p.power = clampedPowers(p.power);
+    const ThinFilmStackResult& r = p.power;
+    auto bound = [](complexd c, double limit) {
+        const double m = std::sqrt(std::norm(c));  // |c| without hypot's overflow guard: |c| ≤ ~1 here
+        return m > limit && m > 0 ? c * (limit / m) : c;
+    };
+    p.crossR = bound(p.crossR, std::sqrt(r.Rs * r.Rp));
+    p.crossT = bound(p.crossT, std::sqrt(r.Ts * r.Tp));
+    return p;
+}
+
 bool airySingleFilmPolarizationAt(const AiryAngle& angle, const AiryFilmConstants& film, const SquaredIndex& substrate,
                                   FilmPolarization& out) {
     using airy_detail::cmul;

@@ -23,6 +23,12 @@ struct FilmPolarization {
     complexd crossT{0.0, 0.0};       // C + iD of the transmission
 };
 
+/// The powers as the polarized mode uses them: R ∈ [0, 1], T ∈ [0, 1 − R] per polarization.
+ThinFilmStackResult clampedPowers(ThinFilmStackResult r);
+/// clampedPowers, and each cross term scaled down to at most √(P_s P_p) of the clamped powers
+/// (its magnitude for a coherent sum), so that the Mueller matrix stays physical.
+FilmPolarization clampedPolarization(FilmPolarization p);
+
 /// Complex amplitudes of a stack by the transfer-matrix method (any number of layers): the
 /// reflection amplitudes r_s, r_p and the tangential transmission coefficients t_s, t_p.
 struct StackAmplitudes {
