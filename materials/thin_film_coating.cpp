@@ -207,22 +207,12 @@ void ThinFilmCoating::init(const ThinFilmCoatingSpec& spec, Arena& arena, ExtraI
     }
 }
 
-namespace {
-/// Truncated sums are not energy conserving (thin_film_stack.h): clamp R to [0,1] and T to [0, 1 − R].
-ThinFilmStackResult clampEnergy(ThinFilmStackResult r) {
-    r.Rs = std::clamp(r.Rs, 0.0, 1.0);
-    r.Rp = std::clamp(r.Rp, 0.0, 1.0);
-    r.Ts = std::clamp(r.Ts, 0.0, 1.0 - r.Rs);
-    r.Tp = std::clamp(r.Tp, 0.0, 1.0 - r.Rp);
-    return r;
-}
-}  // namespace
 
 ThinFilmStackResult ThinFilmCoating::stackRT(int k, double cosTheta) const {
     if (airy_) return exactAt(k, cosTheta, false, airyAngle(cosTheta, extIor_));  // exact single film, hoisted constants
     const int stride = 1 + nExtra_;
     if (nExtra_ == 0)
-        return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
+        return clampedPowers(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, extIor_, layers_[k * stride], substrate_[k]));
     return thinFilmStackRT(lambda_[k], cosTheta, extIor_, std::span<const Layer>(layers_ + k * stride, stride), substrate_[k]);
 }
 
@@ -231,7 +221,7 @@ ThinFilmStackResult ThinFilmCoating::stackRTFromBelow(int k, double cosTheta) co
     const double inc = substrate_[k].real();  // a real dielectric (callers guarantee k = 0)
     if (airy_) return exactAt(k, cosTheta, true, airyAngle(cosTheta, inc));
     if (nExtra_ == 0)
-        return clampEnergy(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
+        return clampedPowers(singleFilmRT(mode_, bounces_, lambda_[k], cosTheta, inc, layers_[k * stride], extIor_));
     Layer rev[9];
     for (int j = 0; j < stride; ++j) rev[j] = layers_[k * stride + stride - 1 - j];
     return thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(rev, stride), complexd(extIor_, 0.0));
@@ -244,7 +234,7 @@ ThinFilmStackResult ThinFilmCoating::stackRTFromBelow(int k, double cosTheta) co
 inline ThinFilmStackResult ThinFilmCoating::exactAt(int k, double cosTheta, bool below, const AiryAngle& angle) const {
     ThinFilmStackResult r;
     if (airySingleFilmFastAt(angle, airyFilm(k), airySubstrate(k, below), r)) {
-        // clampEnergy's result: the kernel already returns Rs, Rp ∈ [0, 1] and Ts, Tp ∈ [0, 1],
+        // clampedPowers's result (truncated sums are not energy conserving, thin_film_stack.h): the kernel already returns Rs, Rp ∈ [0, 1] and Ts, Tp ∈ [0, 1],
         // so only T ≤ 1 − R remains (this runs per wavelength per evaluation).
         r.Ts = std::min(r.Ts, 1.0 - r.Rs);
         r.Tp = std::min(r.Tp, 1.0 - r.Rp);
@@ -257,7 +247,7 @@ ThinFilmStackResult ThinFilmCoating::exactFallback(int k, double cosTheta, bool 
     const double inc = below ? substrate_[k].real() : extIor_;
     const complexd sub = below ? complexd(extIor_, 0.0) : substrate_[k];
     const Layer film{film_[k], thickness_};
-    return clampEnergy(thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
+    return clampedPowers(thinFilmStackRT(lambda_[k], cosTheta, inc, std::span<const Layer>(&film, 1), sub));
 }
 
 uint32_t ThinFilmCoating::airyBatch(double cosTheta, bool below, const AiryBatchOutput& out) const {

@@ -17,11 +17,15 @@
 #include "core/srgb_transfer.h"
 #include "core/xml/xml_values.h"
 #include "materials/textures/bitmap.h"
+#include "tests/support/mapped_libraries.h"
 
 using namespace iris;
 using namespace iris::testing;
 
 namespace {
+
+using test::lineCount;
+using test::mappedLibrary;
 
 std::string tempPath(const std::string& name) { return iris::testing::tempPath("iris_oiio", name); }
 
@@ -51,18 +55,6 @@ std::string writeTexturePng(const std::string& name) {
     writeLDR(p, img);
     return p;
 }
-
-/// Path of a shared library mapped into this process whose path contains `part` ("" if none).
-std::string mappedLibrary(const std::string& part) {
-    std::ifstream maps("/proc/self/maps");
-    for (std::string line; std::getline(maps, line);) {
-        const size_t slash = line.find('/');
-        if (slash != std::string::npos && line.find(part, slash) != std::string::npos) return line.substr(slash);
-    }
-    return {};
-}
-
-int lineCount(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
 }  // namespace
 

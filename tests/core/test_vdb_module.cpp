@@ -17,6 +17,7 @@
 #include "core/io/vdb_reader.h"
 #include "tests/support/app_runner.h"
 #include "tests/support/error_of.h"
+#include "tests/support/mapped_libraries.h"
 
 using namespace iris;
 using namespace iris::test;
@@ -77,18 +78,6 @@ RunResult renderWithModule(const std::string& module, const std::string& scene, 
     const std::string env = module.empty() ? "env -u IRIS_VDB_MODULE " : std::string(kVdbModuleEnv) + "=" + shellQuote(module) + " ";
     return runCommand(env + appPath("render") + " " + scene + " -o " + out + " --quiet --no-png --threads 1");
 }
-
-/// Path of a shared library mapped into this process whose path contains `part` ("" if none).
-std::string mappedLibrary(const std::string& part) {
-    std::ifstream maps("/proc/self/maps");
-    for (std::string line; std::getline(maps, line);) {
-        const size_t slash = line.find('/');
-        if (slash != std::string::npos && line.find(part, slash) != std::string::npos) return line.substr(slash);
-    }
-    return {};
-}
-
-int lineCount(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
 }  // namespace
 
