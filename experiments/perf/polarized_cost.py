@@ -5,7 +5,7 @@ sample count, one thread (less noise from a shared machine). Each configuration 
 `--repeats` times alternately and the fastest run counts (the least disturbed by other work); the
 figure is iris's own render time (the EXR's iris.render_time_s, without scene loading) divided by
 the number of samples. Goal: polarized / spectral ≤ 1.8. Defaults: 9 repeats of 64 spp: with 3 of
-32 spp, five runs on one idle afternoon of this 2-core VM gave ratios from 1.61 to 2.07 for the same
+32 spp, four runs within minutes on this idle 2-core VM gave ratios from 1.61 to 2.07 for the same
 build (the spectral runs of about 0.4 s were the noisy ones).
 
     /usr/bin/python3 experiments/perf/polarized_cost.py [--build build] [--repeats 9] [--res 128] [--spp 64]
