@@ -60,6 +60,13 @@ struct Batch {
                               l.substrate.inv.imag(), l.angle.s2, l.angle.y0s, l.angle.y0p};
         for (int a = 0; a < 12; ++a) v[a][k] = x[a];
     }
+    /// Random lanes for entries [0, airyPadded(n)), their cases in lanes[].
+    void fillRandom(std::mt19937& rng, int n, LaneCase* lanes) {
+        for (int k = 0; k < airyPadded(n); ++k) {
+            lanes[k] = randomLane(rng);
+            set(k, lanes[k]);
+        }
+    }
     uint32_t run(int n) {
         const AiryBatchInput in{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]};
         return airySingleFilmBatch(in, n, AiryBatchOutput{out[0], out[1], out[2], out[3]});
@@ -74,10 +81,7 @@ TEST(FilmAiryBatch, EveryLaneEqualsTheScalarKernel) {
         const int n = 1 + trial % kMaxWavelengths;
         Batch b;
         LaneCase lanes[kMaxWavelengths];
-        for (int k = 0; k < airyPadded(n); ++k) {
-            lanes[k] = randomLane(rng);
-            b.set(k, lanes[k]);
-        }
+        b.fillRandom(rng, n, lanes);
         const uint32_t mask = b.run(n);
         if (n < 32) ASSERT_EQ(mask >> n, 0u) << "lanes beyond n reported";
         for (int k = 0; k < n; ++k) {
@@ -119,10 +123,7 @@ TEST(FilmAiryBatch, CrossTermsEqualTheScalarPolarizationKernel) {
         const int n = 1 + trial % kMaxWavelengths;
         Batch b;
         LaneCase lanes[kMaxWavelengths];
-        for (int k = 0; k < airyPadded(n); ++k) {
-            lanes[k] = randomLane(rng);
-            b.set(k, lanes[k]);
-        }
+        b.fillRandom(rng, n, lanes);
         double cross[4][kMaxWavelengths];
         const AiryBatchInput in{b.v[0], b.v[1], b.v[2], b.v[3], b.v[4], b.v[5], b.v[6], b.v[7], b.v[8], b.v[9], b.v[10], b.v[11]};
         const uint32_t mask = airySingleFilmBatch(
