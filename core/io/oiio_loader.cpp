@@ -1,15 +1,12 @@
 #include "core/io/oiio_loader.h"
 
-#include <memory>
-#include <mutex>
-
 #include "core/io/plugin_module.h"
 
 namespace iris {
 
 namespace {
 
-constexpr const char* kModuleFile = "libiris_oiio.so";
+constexpr PluginModuleName kModule{"libiris_oiio.so", kOiioModuleEnv, "OpenImageIO", "iris_oiio"};
 
 /// Load and check the module at `path`; returns nullptr and sets `reason` on failure. The module
 /// is never unloaded (OpenImageIO keeps threads and static state).
@@ -24,25 +21,16 @@ std::unique_ptr<OiioModule> load(const std::string& path, std::string& reason) {
     m->channelName = lib.symbol<iris_oiio_channel_name_fn>("iris_oiio_channel_name");
     m->readFloat = lib.symbol<iris_oiio_read_float_fn>("iris_oiio_read_float");
     m->close = lib.symbol<iris_oiio_close_fn>("iris_oiio_close");
-    if (!lib.check(version, IRIS_OIIO_ABI_VERSION, "OpenImageIO", reason)) return nullptr;
+    if (!lib.check(version, IRIS_OIIO_ABI_VERSION, kModule.kind, reason)) return nullptr;
     return m;
 }
 
 }  // namespace
 
-std::string oiioModulePath() { return pluginModulePath(kModuleFile, kOiioModuleEnv); }
+std::string oiioModulePath() { return pluginModulePath(kModule.file, kModule.envVar); }
 
 const OiioModule& oiioModule(const std::string& file, const std::string& action) {
-    static std::mutex mutex;
-    static std::unique_ptr<OiioModule> loaded;
-    std::lock_guard<std::mutex> lock(mutex);
-    if (!loaded) {
-        const std::string path = oiioModulePath();
-        std::string reason;
-        loaded = load(path, reason);
-        if (!loaded) failModuleLoad(file, action, "OpenImageIO", path, reason, "iris_oiio", kOiioModuleEnv);
-    }
-    return *loaded;
+    return loadedModule(kModule, load, file, action);
 }
 
 }  // namespace iris

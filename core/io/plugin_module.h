@@ -5,6 +5,8 @@
 // (OpenImageIO, OpenVDB) whose relocation would cost every process its start-up time.
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <string>
 
 namespace iris {
@@ -44,5 +46,32 @@ private:
 /// (<reason>); it is built beside the executables (target <target>), or set <envVar> to its path".
 [[noreturn]] void failModuleLoad(const std::string& file, const std::string& action, const std::string& kind,
                                  const std::string& path, const std::string& reason, const char* target, const char* envVar);
+
+/// One module as its loader names it: the file, the environment variable that overrides its path,
+/// the library it wraps (for messages) and its CMake target.
+struct PluginModuleName {
+    const char* file;
+    const char* envVar;
+    const char* kind;
+    const char* target;
+};
+
+/// The module that `load(path, reason)` makes of the file pluginModulePath finds, loaded on the
+/// first call (thread-safe; a failed load is retried next time; one per Module type); otherwise
+/// failModuleLoad naming `file` (what the caller was working on) and `action`.
+template <typename Module>
+const Module& loadedModule(const PluginModuleName& name, std::unique_ptr<Module> (*load)(const std::string&, std::string&),
+                           const std::string& file, const std::string& action) {
+    static std::mutex mutex;
+    static std::unique_ptr<Module> loaded;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!loaded) {
+        const std::string path = pluginModulePath(name.file, name.envVar);
+        std::string reason;
+        loaded = load(path, reason);
+        if (!loaded) failModuleLoad(file, action, name.kind, path, reason, name.target, name.envVar);
+    }
+    return *loaded;
+}
 
 }  // namespace iris

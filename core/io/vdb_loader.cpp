@@ -1,15 +1,12 @@
 #include "core/io/vdb_loader.h"
 
-#include <memory>
-#include <mutex>
-
 #include "core/io/plugin_module.h"
 
 namespace iris {
 
 namespace {
 
-constexpr const char* kModuleFile = "libiris_vdb.so";
+constexpr PluginModuleName kModule{"libiris_vdb.so", kVdbModuleEnv, "OpenVDB", "iris_vdb"};
 
 /// Load and check the module at `path`; returns nullptr and sets `reason` on failure. The module
 /// is never unloaded (OpenVDB keeps registries and static state once initialised).
@@ -22,25 +19,16 @@ std::unique_ptr<VdbModule> load(const std::string& path, std::string& reason) {
     m->open = lib.symbol<iris_vdb_open_fn>("iris_vdb_open");
     m->readDense = lib.symbol<iris_vdb_read_dense_fn>("iris_vdb_read_dense");
     m->close = lib.symbol<iris_vdb_close_fn>("iris_vdb_close");
-    if (!lib.check(version, IRIS_VDB_ABI_VERSION, "OpenVDB", reason)) return nullptr;
+    if (!lib.check(version, IRIS_VDB_ABI_VERSION, kModule.kind, reason)) return nullptr;
     return m;
 }
 
 }  // namespace
 
-std::string vdbModulePath() { return pluginModulePath(kModuleFile, kVdbModuleEnv); }
+std::string vdbModulePath() { return pluginModulePath(kModule.file, kModule.envVar); }
 
 const VdbModule& vdbModule(const std::string& file, const std::string& action) {
-    static std::mutex mutex;
-    static std::unique_ptr<VdbModule> loaded;
-    std::lock_guard<std::mutex> lock(mutex);
-    if (!loaded) {
-        const std::string path = vdbModulePath();
-        std::string reason;
-        loaded = load(path, reason);
-        if (!loaded) failModuleLoad(file, action, "OpenVDB", path, reason, "iris_vdb", kVdbModuleEnv);
-    }
-    return *loaded;
+    return loadedModule(kModule, load, file, action);
 }
 
 }  // namespace iris
