@@ -281,8 +281,7 @@ uint32_t ThinFilmCoating::airyBatch(double cosTheta, bool below, const AiryBatch
     return airySingleFilmBatch(in, n_, out);
 }
 
-void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
-    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+void ThinFilmCoating::exactPowersAll(double cosTheta, bool below, double* Rs, double* Rp, double* Ts, double* Tp) const {
     uint32_t declined = airyBatch(cosTheta, below, AiryBatchOutput{Rs, Rp, Ts, Tp});
     while (declined) {  // the rare entries the closed form declines: the transfer matrix (as exactAt)
         const int k = __builtin_ctz(declined);
@@ -293,6 +292,11 @@ void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, 
         Ts[k] = r.Ts;
         Tp[k] = r.Tp;
     }
+}
+
+void ThinFilmCoating::exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const {
+    alignas(32) double Rs[kMaxWavelengths], Rp[kMaxWavelengths], Ts[kMaxWavelengths], Tp[kMaxWavelengths];
+    exactPowersAll(cosTheta, below, Rs, Rp, Ts, Tp);
     // As exactAt: the kernel's R, T ∈ [0, 1], and T ≤ 1 − R (the fallback's values already satisfy it).
     for (int k = 0; k < n_; ++k) R[k] = float(0.5 * (Rs[k] + Rp[k]));  // ThinFilmStackResult::R()
     if (T)

@@ -171,6 +171,9 @@ private:
         return {complexd(airyArray(AiryArray(sub))[k], airyArray(AiryArray(sub + 1))[k]),
                 complexd(airyArray(AiryArray(sub + 2))[k], airyArray(AiryArray(sub + 3))[k])};
     }
+    /// The s and p powers at every entry through the batched kernel (airy_ set), the entries it
+    /// declines by the transfer matrix (exactFallback): exactAt's values except T ≤ 1 − R.
+    void exactPowersAll(double cosTheta, bool below, double* Rs, double* Rp, double* Ts, double* Tp) const;
     /// R and T at every entry through the batched kernel (airy_ set, not Belcour–Barla).
     void exactAll(double cosTheta, bool below, SampledSpectrum& R, SampledSpectrum* T) const;
     /// The batched kernel's s and p powers at every entry (airy_ set): out's R, T arrays (and the

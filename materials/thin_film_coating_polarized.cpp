@@ -62,19 +62,17 @@ void ThinFilmCoating::polarizationAll(double cosTheta, bool below, PolarizationL
 
 void ThinFilmCoating::polarizationPowersAll(double cosTheta, bool below, PolarizationLanes& out) const {
     requireSpectral(rgb_ || belcourBarla_);
-    uint32_t perEntry = n_ >= 32 ? ~0u : (1u << n_) - 1;
-    if (airy_) {
-        perEntry = airyBatch(cosTheta, below, AiryBatchOutput{out.Rs, out.Rp, out.Ts, out.Tp});
-        for (int k = 0; k < n_; ++k) {  // clampedPowers: the kernel's R, T ∈ [0, 1]; T ≤ 1 − R remains
-            out.Ts[k] = std::min(out.Ts[k], 1.0 - out.Rs[k]);
-            out.Tp[k] = std::min(out.Tp[k], 1.0 - out.Rp[k]);
+    if (!airy_) {
+        for (int k = 0; k < n_; ++k) {
+            const ThinFilmStackResult p = polarizationPowers(k, cosTheta, below);
+            out.Rs[k] = p.Rs, out.Rp[k] = p.Rp, out.Ts[k] = p.Ts, out.Tp[k] = p.Tp;
         }
+        return;
     }
-    while (perEntry) {
-        const int k = __builtin_ctz(perEntry);
-        perEntry &= perEntry - 1;
-        const ThinFilmStackResult p = polarizationPowers(k, cosTheta, below);
-        out.Rs[k] = p.Rs, out.Rp[k] = p.Rp, out.Ts[k] = p.Ts, out.Tp[k] = p.Tp;
+    exactPowersAll(cosTheta, below, out.Rs, out.Rp, out.Ts, out.Tp);
+    for (int k = 0; k < n_; ++k) {  // clampedPowers: R, T ∈ [0, 1] already; T ≤ 1 − R remains
+        out.Ts[k] = std::min(out.Ts[k], 1.0 - out.Rs[k]);
+        out.Tp[k] = std::min(out.Tp[k], 1.0 - out.Rp[k]);
     }
 }
 
