@@ -73,36 +73,36 @@ def uses_integrator_default(scene: Path) -> bool:
     return "$integrator" in scene.read_text() or scene.parent == mitsuba_refs.SCENE_DIR
 
 
-def switched_copy(scene: Path, integrator: str, workdir: Path) -> Path:
-    """A temporary copy of `scene` rendering with `integrator`; `<path>` keeps relative names working."""
-    if uses_integrator_default(scene):
-        return scene
+def integrator_copy(scene: Path, element: str, stem: str, workdir: Path, path_type: str | None = None) -> Path:
+    """A temporary copy of `scene` (workdir/stem.xml) whose `<integrator type="direct"/>` is `element`,
+    or, failing that and given `path_type`, whose `<integrator type="path"` is of that type; `<path>`
+    keeps relative names working."""
     text = scene.read_text()
     text = re.sub(r'<scene version="[^"]*">', lambda m: m.group(0) + f'\n    <path value="{scene.parent}"/>', text, count=1)
-    text, n = re.subn(r'<integrator type="direct"\s*/>',
-                      f'<integrator type="{integrator}"><integer name="max_depth" value="2"/></integrator>', text, count=1)
-    if not n:
-        text, n = re.subn(r'<integrator type="path"', f'<integrator type="{integrator}"', text, count=1)
+    text, n = re.subn(r'<integrator type="direct"\s*/>', element, text, count=1)
+    if not n and path_type:
+        text, n = re.subn(r'<integrator type="path"', f'<integrator type="{path_type}"', text, count=1)
     if not n:
         raise SystemExit(f"{scene}: no integrator element to switch")
-    out = workdir / f"{scene.stem}_{integrator}.xml"
+    out = workdir / f"{stem}.xml"
     out.write_text(text)
     return out
+
+
+def switched_copy(scene: Path, integrator: str, workdir: Path) -> Path:
+    """`scene` rendering with `integrator` (a `direct` scene's becomes max_depth 2)."""
+    if uses_integrator_default(scene):
+        return scene
+    element = f'<integrator type="{integrator}"><integer name="max_depth" value="2"/></integrator>'
+    return integrator_copy(scene, element, f"{scene.stem}_{integrator}", workdir, path_type=integrator)
 
 
 def strategy_copy(scene: Path, strategy: str, workdir: Path) -> Path:
     """A copy of a `direct` scene rendering one BDPT split unweighted (max_depth 2: the paths of two
     segments only), an estimate of the whole path length by that split alone."""
-    text = scene.read_text()
-    text = re.sub(r'<scene version="[^"]*">', lambda m: m.group(0) + f'\n    <path value="{scene.parent}"/>', text, count=1)
     element = ('<integrator type="bdpt"><integer name="max_depth" value="2"/>'
                f'<string name="strategy" value="{strategy}"/><boolean name="mis_weights" value="false"/></integrator>')
-    text, n = re.subn(r'<integrator type="direct"\s*/>', element, text, count=1)
-    if not n:
-        raise SystemExit(f"{scene}: no direct integrator for the control")
-    out = workdir / f"{scene.stem}_bdpt_{strategy.replace(',', '_')}.xml"
-    out.write_text(text)
-    return out
+    return integrator_copy(scene, element, f"{scene.stem}_bdpt_{strategy.replace(',', '_')}", workdir)
 
 
 def control(args, render_exe, name, scene, defines, mode, workdir) -> dict:
@@ -114,14 +114,21 @@ def control(args, render_exe, name, scene, defines, mode, workdir) -> dict:
     d = defines_for(scene, defines, "bdpt", args.res)
     spp = 4 * args.spp
     ref = render(render_exe, strategy_copy(scene, "1,2", workdir), mode, spp, args.seed + 2000, workdir / f"{name}_{mode}_s12", d)
-    mean, var, n = render(render_exe, strategy_copy(scene, "0,3", workdir), mode, spp, args.seed + 3000,
-                          workdir / f"{name}_{mode}_s03", d)
-    var = welch.floor_by_reference(var, n, ref[1], ref[2])
-    r = welch.multiscale_test(mean, var, n, ref[0], ref[1], ref[2], SIGNIFICANCE)
-    ratio = float(mean[..., 1].sum() / ref[0][..., 1].sum()) if ref[0][..., 1].sum() else float("nan")
-    return {"scene": name, "mode": mode, "integrator": "control: bdpt split (0,3) vs (1,2), unweighted",
-            "verdict": "pass" if r["passed"] else "fail", "p_min": r["p_min"], "threshold": r["threshold"],
-            "scale": r["scale"], "ratio_Y": ratio, "spp": n, "ref_spp": ref[2], **failing_pixels(r, mean, ref[0], ref[1])}
+    test = render(render_exe, strategy_copy(scene, "0,3", workdir), mode, spp, args.seed + 3000, workdir / f"{name}_{mode}_s03", d)
+    return verdict_row(name, mode, "control: bdpt split (0,3) vs (1,2), unweighted", test, ref)
+
+
+def verdict_row(name: str, mode: str, integrator: str, test: tuple, ref: tuple) -> dict:
+    """Welch's multiscale test of `test` against `ref`, each (mean, variance of the mean, spp) as
+    render() returns them (the test's variance floored by the reference's), as a report row."""
+    mean, var, n = test
+    ref_mean, ref_var, ref_n = ref
+    var = welch.floor_by_reference(var, n, ref_var, ref_n)
+    r = welch.multiscale_test(mean, var, n, ref_mean, ref_var, ref_n, SIGNIFICANCE)
+    ratio = float(mean[..., 1].sum() / ref_mean[..., 1].sum()) if ref_mean[..., 1].sum() else float("nan")
+    return {"scene": name, "mode": mode, "integrator": integrator, "verdict": "pass" if r["passed"] else "fail",
+            "p_min": r["p_min"], "threshold": r["threshold"], "scale": r["scale"], "ratio_Y": ratio,
+            "spp": n, "ref_spp": ref_n, **failing_pixels(r, mean, ref_mean, ref_var)}
 
 
 def scene_list(args) -> list[tuple[str, Path, dict, bool]]:
@@ -164,19 +171,14 @@ def test_spp(args, integrator: str, ptracer_sees: bool) -> int:
 def compare(args, render_exe, name, scene, defines, mode, workdir, ptracer_sees: bool) -> list[dict]:
     # The reference is `path` (a `direct` scene's path of max_depth 2).
     ref_scene = switched_copy(scene, "path", workdir)
-    ref_mean, ref_var, ref_n = render(render_exe, ref_scene, mode, 4 * args.spp, args.seed + 1000, workdir / f"{name}_{mode}_path",
-                                      defines_for(scene, defines, "path", args.res))
+    ref = render(render_exe, ref_scene, mode, 4 * args.spp, args.seed + 1000, workdir / f"{name}_{mode}_path",
+                 defines_for(scene, defines, "path", args.res))
     rows = []
     for integrator in args.integrators.split(","):
         test_scene = switched_copy(scene, integrator, workdir)
-        mean, var, n = render(render_exe, test_scene, mode, test_spp(args, integrator, ptracer_sees), args.seed, workdir / f"{name}_{mode}_{integrator}",
-                              defines_for(scene, defines, integrator, args.res))
-        var = welch.floor_by_reference(var, n, ref_var, ref_n)
-        r = welch.multiscale_test(mean, var, n, ref_mean, ref_var, ref_n, SIGNIFICANCE)
-        ratio = float(mean[..., 1].sum() / ref_mean[..., 1].sum()) if ref_mean[..., 1].sum() else float("nan")
-        rows.append({"scene": name, "mode": mode, "integrator": integrator, "verdict": "pass" if r["passed"] else "fail",
-                     "p_min": r["p_min"], "threshold": r["threshold"], "scale": r["scale"], "ratio_Y": ratio,
-                     "spp": n, "ref_spp": ref_n, **failing_pixels(r, mean, ref_mean, ref_var)})
+        test = render(render_exe, test_scene, mode, test_spp(args, integrator, ptracer_sees), args.seed,
+                      workdir / f"{name}_{mode}_{integrator}", defines_for(scene, defines, integrator, args.res))
+        rows.append(verdict_row(name, mode, integrator, test, ref))
     return rows
 
 
