@@ -1,12 +1,27 @@
 #include "integrators/stokes_throughput.h"
 
+#include <limits>
+#include <new>
+
+#include "spectral/lanes.h"
 #include "spectral/stokes_basis.h"
 
 namespace iris {
 
+using lanes::Float4;
+
+namespace {
+
+constexpr int kGroup = SampledSpectrum::kLanes;  // lanes per Float4
+
+Float4 lanesAt(const SampledSpectrum& s, int l) { return lanes::load(s.lanes() + l); }
+void setLanes(SampledSpectrum& s, int l, Float4 v) { lanes::store(s.lanes() + l, v); }
+
+}  // namespace
+
 StokesThroughput::StokesThroughput(int rows, int n, const vec3& basis) : rows_(rows), basis_(basis) {
     for (int k = 0; k < rows_; ++k)
-        for (int j = 0; j < 4; ++j) r_[k][j] = SampledSpectrum(n, k == j ? 1.0f : 0.0f);
+        for (int j = 0; j < 4; ++j) ::new (&r_[k][j]) SampledSpectrum(n, k == j ? 1.0f : 0.0f);  // in place
 }
 
 void StokesThroughput::changeBasis(const vec3& forward, const vec3& next) {
@@ -14,33 +29,35 @@ void StokesThroughput::changeBasis(const vec3& forward, const vec3& next) {
     const mueller::BasisRotation R = stokesBasisRotation(forward, next, basis_);
     basis_ = next;
     if (R.c2 == 1.0f && R.s2 == 0.0f) return;
-    const int n = r_[0][0].size();
-    for (int k = 0; k < rows_; ++k)  // lane by lane: the spectrum operations' float products, no temporaries
-        for (int l = 0; l < n; ++l) {
-            const float a = r_[k][1][l], b = r_[k][2][l];
-            r_[k][1][l] = a * R.c2 - b * R.s2;
-            r_[k][2][l] = a * R.s2 + b * R.c2;
+    const int padded = r_[0][0].padded();
+    const Float4 c = lanes::broadcast(R.c2), s = lanes::broadcast(R.s2);
+    for (int k = 0; k < rows_; ++k)  // four lanes at a time: the spectrum operations' float products, no temporaries
+        for (int l = 0; l < padded; l += kGroup) {
+            const Float4 a = lanesAt(r_[k][1], l), b = lanesAt(r_[k][2], l);
+            setLanes(r_[k][1], l, a * c - b * s);
+            setLanes(r_[k][2], l, a * s + b * c);
         }
 }
 
 void StokesThroughput::apply(const MuellerSpectrum& M, const vec3& inputBasis) {
     basis_ = inputBasis;
+    const int padded = r_[0][0].padded();
     if (M.depolarizing()) {  // only M(0, 0): what remains is the response to unpolarized light
         for (int k = 0; k < rows_; ++k) {
             r_[k][0] *= M(0, 0);
-            for (int j = 1; j < 4; ++j) r_[k][j] = SampledSpectrum(r_[k][0].size());
+            for (int j = 1; j < 4; ++j)
+                for (int l = 0; l < padded; l += kGroup) setLanes(r_[k][j], l, Float4{});
         }
         return;
     }
-    // Row times matrix lane by lane, summed over i = 0..3 in order (the spectrum operations' values).
-    const int n = r_[0][0].size();
+    // Row times matrix four lanes at a time, summed over i = 0..3 in order (the spectrum operations' values).
     for (int k = 0; k < rows_; ++k)
-        for (int l = 0; l < n; ++l) {
-            const float x[4] = {r_[k][0][l], r_[k][1][l], r_[k][2][l], r_[k][3][l]};
+        for (int l = 0; l < padded; l += kGroup) {
+            const Float4 x[4] = {lanesAt(r_[k][0], l), lanesAt(r_[k][1], l), lanesAt(r_[k][2], l), lanesAt(r_[k][3], l)};
             for (int j = 0; j < 4; ++j) {
-                float v = x[0] * M(0, j)[l];
-                for (int i = 1; i < 4; ++i) v += x[i] * M(i, j)[l];
-                r_[k][j][l] = v;
+                Float4 v = x[0] * lanesAt(M(0, j), l);
+                for (int i = 1; i < 4; ++i) v += x[i] * lanesAt(M(i, j), l);
+                setLanes(r_[k][j], l, v);
             }
         }
 }
@@ -71,10 +88,16 @@ void StokesThroughput::addUnpolarized(const SampledSpectrum& L, float w, StokesV
 }
 
 bool StokesThroughput::hasNonFinite() const {
-    for (int k = 0; k < rows_; ++k)
-        for (int j = 0; j < 4; ++j)
-            if (r_[k][j].hasNonFinite()) return true;
-    return false;
+    // Four lanes at a time: |x| < ∞ is false exactly for ±∞ and NaN (std::isfinite); lanes ≥ n are not tested.
+    const int n = r_[0][0].size();
+    const Float4 inf = lanes::broadcast(std::numeric_limits<float>::infinity());
+    lanes::Int4 bad{};
+    for (int l = 0; l < r_[0][0].padded(); l += kGroup) {
+        const lanes::Int4 inRange = lanes::Int4{0, 1, 2, 3} + l < lanes::broadcast(int32_t(n));
+        for (int k = 0; k < rows_; ++k)
+            for (int j = 0; j < 4; ++j) bad |= inRange & ~(lanes::abs(lanesAt(r_[k][j], l)) < inf);
+    }
+    return lanes::bits(bad) != 0;
 }
 
 }  // namespace iris

@@ -1,24 +1,39 @@
 #include "materials/thin_film_mueller.h"
 
 #include "materials/mueller_frames.h"
+#include "spectral/lanes.h"
+
+// Double4 values pass only between always-inline lane functions (spectral/lanes.h): GCC's note on
+// the ABI of 32-byte vectors without AVX concerns calls that never happen.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace iris {
 
 namespace {
 
+using lanes::Double4;
+using lanes::Float4;
+
+/// Lanes l..l+3 of an entry (four at a time: no scalar stores that vector loads read back).
+void setLanes(SampledSpectrum& s, int l, Float4 v) { lanes::store(s.lanes() + l, v); }
+/// v where lane l + i < n, 0 in the padding lanes (the terms there are unspecified).
+Float4 inEntries(Float4 v, int l, int n) {
+    return lanes::select<Float4>(lanes::Int4{0, 1, 2, 3} + l < lanes::broadcast(int32_t(n)), v, Float4{});
+}
+
 /// The interface layout [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]] per wavelength
-/// from each entry's powers P_s, P_p and cross term C + iD (spectral/thin_film_polarization.h).
-template <typename Terms>
-MuellerSpectrum layout(int n, Terms&& terms) {
+/// from each entry's powers P_s, P_p and cross term C + iD (spectral/thin_film_polarization.h;
+/// A = (P_s + P_p)/2, B = (P_s − P_p)/2: Mitsuba 3 mueller::specular_reflection), structure of
+/// arrays as ThinFilmCoating::PolarizationLanes, four entries at a time.
+MuellerSpectrum layout(int n, const double* ps, const double* pp, const double* re, const double* im) {
     SampledSpectrum A(n), B(n), C(n), D(n);
-    for (int k = 0; k < n; ++k) {
-        double ps, pp;
-        complexd cross;
-        terms(k, ps, pp, cross);
-        A[k] = float(0.5 * (ps + pp));
-        B[k] = float(0.5 * (ps - pp));
-        C[k] = float(cross.real());
-        D[k] = float(cross.imag());
+    const Double4 half = lanes::broadcast(0.5);
+    for (int l = 0; l < n; l += SampledSpectrum::kLanes) {
+        const Double4 s = lanes::load(ps + l), p = lanes::load(pp + l);
+        setLanes(A, l, inEntries(lanes::toFloat(half * (s + p)), l, n));
+        setLanes(B, l, inEntries(lanes::toFloat(half * (s - p)), l, n));
+        setLanes(C, l, inEntries(lanes::toFloat(lanes::load(re + l)), l, n));
+        setLanes(D, l, inEntries(lanes::toFloat(lanes::load(im + l)), l, n));
     }
     return mueller::interfaceMueller(A, B, C, D);
 }
@@ -29,9 +44,7 @@ MuellerSpectrum coatingReflectionMueller(const ThinFilmCoating& c, float cosThet
                                          const vec3& wo) {
     ThinFilmCoating::PolarizationLanes p;
     c.polarizationAll(cosTheta, below, p);  // all wavelengths at once (the batched kernel)
-    const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        ps = p.Rs[k], pp = p.Rp[k], cross = complexd(p.crossRRe[k], p.crossRIm[k]);
-    });
+    const MuellerSpectrum M = layout(c.size(), p.Rs, p.Rp, p.crossRRe, p.crossRIm);
     return fromSAxisBases(M, m, wi, wo);
 }
 
@@ -39,9 +52,7 @@ MuellerSpectrum coatingTransmissionMueller(const ThinFilmCoating& c, float cosTh
                                            const vec3& wo) {
     ThinFilmCoating::PolarizationLanes p;
     c.polarizationAll(cosTheta, below, p);
-    const MuellerSpectrum M = layout(c.size(), [&](int k, double& ps, double& pp, complexd& cross) {
-        ps = p.Ts[k], pp = p.Tp[k], cross = complexd(p.crossTRe[k], p.crossTIm[k]);
-    });
+    const MuellerSpectrum M = layout(c.size(), p.Ts, p.Tp, p.crossTRe, p.crossTIm);
     return fromSAxisBases(M, m, wi, wo);
 }
 
@@ -51,16 +62,20 @@ MuellerSpectrum coatingDiffuseMueller(const ThinFilmCoating& c, const SampledSpe
     ThinFilmCoating::PolarizationLanes pin, pout;
     c.polarizationPowersAll(wi.z, false, pin);
     c.polarizationPowersAll(wo.z, false, pout);
-    for (int k = 0; k < n; ++k) {
-        const ThinFilmStackResult in{pin.Rs[k], pin.Rp[k], pin.Ts[k], pin.Tp[k]}, out{pout.Rs[k], pout.Rp[k], pout.Ts[k], pout.Tp[k]};
-        // T is reciprocal per polarization: the exit through the stack at θo has the T_s, T_p of the
-        // entry at θo (Born & Wolf §1.5; Mitsuba 3 pplastic.cpp: Ti · depolarizer · To).
-        const double ai = 0.5 * (in.Ts + in.Tp), bi = 0.5 * (in.Ts - in.Tp);
-        const double ao = 0.5 * (out.Ts + out.Tp), bo = 0.5 * (out.Ts - out.Tp);
-        M(0, 0)[k] = float(base[k] * ao * ai);
-        M(0, 1)[k] = float(base[k] * ao * bi);
-        M(1, 0)[k] = float(base[k] * bo * ai);
-        M(1, 1)[k] = float(base[k] * bo * bi);
+    // T is reciprocal per polarization: the exit through the stack at θo has the T_s, T_p of the
+    // entry at θo (Born & Wolf §1.5; Mitsuba 3 pplastic.cpp: Ti · depolarizer · To). Four entries
+    // at a time, in double as the per-entry form: base · a_o · a_i etc. with a = (T_s + T_p)/2,
+    // b = (T_s − T_p)/2.
+    const Double4 half = lanes::broadcast(0.5);
+    for (int l = 0; l < n; l += SampledSpectrum::kLanes) {
+        const Double4 tsi = lanes::load(pin.Ts + l), tpi = lanes::load(pin.Tp + l);
+        const Double4 tso = lanes::load(pout.Ts + l), tpo = lanes::load(pout.Tp + l);
+        const Double4 ai = half * (tsi + tpi), bi = half * (tsi - tpi), ao = half * (tso + tpo), bo = half * (tso - tpo);
+        const Double4 b = lanes::toDouble(lanes::load(base.lanes() + l));
+        setLanes(M(0, 0), l, inEntries(lanes::toFloat(b * ao * ai), l, n));
+        setLanes(M(0, 1), l, inEntries(lanes::toFloat(b * ao * bi), l, n));
+        setLanes(M(1, 0), l, inEntries(lanes::toFloat(b * bo * ai), l, n));
+        setLanes(M(1, 1), l, inEntries(lanes::toFloat(b * bo * bi), l, n));
     }
     return fromSAxisBases(M, vec3(0, 0, 1), wi, wo);
 }

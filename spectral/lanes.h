@@ -103,6 +103,9 @@ IRIS_LANES_INLINE Float4 copysign(Float4 mag, Float4 sgn) {
 /// int(x) per lane (truncation toward zero, as the scalar conversion) and back.
 IRIS_LANES_INLINE Int4 toInt(Float4 x) { return __builtin_convertvector(x, Int4); }
 IRIS_LANES_INLINE Float4 toFloat(Int4 i) { return __builtin_convertvector(i, Float4); }
+/// float(x) per lane (rounded to nearest, as the scalar conversion) and double(x) (exact).
+IRIS_LANES_INLINE Float4 toFloat(Double4 x) { return __builtin_convertvector(x, Float4); }
+IRIS_LANES_INLINE Double4 toDouble(Float4 x) { return __builtin_convertvector(x, Double4); }
 
 /// Bit k set where lane k of the mask is true.
 IRIS_LANES_INLINE int bits(Long4 m) { return int(m[0] & 1) | int(m[1] & 2) | int(m[2] & 4) | int(m[3] & 8); }

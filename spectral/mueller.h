@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cmath>
+#include <new>
 
 #include "spectral/sampled_spectrum.h"
 
@@ -35,7 +36,7 @@ struct StokesVector {
 class MuellerSpectrum {
 public:
     explicit MuellerSpectrum(int n = 0) {
-        for (SampledSpectrum& e : e_) e = SampledSpectrum(n);
+        for (SampledSpectrum& e : e_) place(e, n, [](int) { return 0.0f; });
     }
     // Copies touch only the lanes in use, and only entry (0, 0) of a depolarizer: a matrix is
     // 16 × kMaxWavelengths floats, most of it unused at N = 4.
@@ -80,12 +81,13 @@ public:
     /// The interface layout from its four distinct entries (mueller::interfaceMueller).
     static MuellerSpectrum interface(const SampledSpectrum& A, const SampledSpectrum& B, const SampledSpectrum& C,
                                      const SampledSpectrum& D) {
-        MuellerSpectrum m(A.size());
-        m(0, 0) = m(1, 1) = A;
-        m(0, 1) = m(1, 0) = B;
-        m(2, 2) = m(3, 3) = C;
-        m(2, 3) = -D;
-        m(3, 2) = D;
+        MuellerSpectrum m(A.size());  // the zeros; then the eight other entries in place
+        const float *a = A.lanes(), *b = B.lanes(), *c = C.lanes(), *d = D.lanes();
+        for (int k : {0, 5}) place(m.e_[k], A.size(), [a](int j) { return a[j]; });
+        for (int k : {1, 4}) place(m.e_[k], A.size(), [b](int j) { return b[j]; });
+        for (int k : {10, 15}) place(m.e_[k], A.size(), [c](int j) { return c[j]; });
+        place(m.e_[11], A.size(), [d](int j) { return -d[j]; });
+        place(m.e_[14], A.size(), [d](int j) { return d[j]; });
         m.interface_ = true;
         return m;
     }
@@ -107,9 +109,9 @@ public:
     MuellerSpectrum& operator+=(const MuellerSpectrum& o) {
         if (depolarizing_ && o.depolarizing_) return e_[0] += o.e_[0], *this;
         if (depolarizing_) *this = expanded();
-        const MuellerSpectrum b = o.expanded();
-        for (int k = 0; k < 16; ++k) e_[k] += b.e_[k];
-        interface_ = interface_ && b.interface_;
+        if (o.depolarizing_) return e_[0] += o.e_[0], interface_ = false, *this;  // o's other entries are 0
+        for (int k = 0; k < 16; ++k) e_[k] += o.e_[k];
+        interface_ = interface_ && o.interface_;
         return *this;
     }
     friend MuellerSpectrum operator*(MuellerSpectrum m, const SampledSpectrum& v) { return m *= v; }
@@ -154,8 +156,14 @@ private:
         const int n = o.size();
         for (int k = 0; k < o.used(); ++k) {
             const float* src = o.e_[k].lanes();
-            e_[k] = SampledSpectrum::fromLanes(n, [src](int j) { return src[j]; });
+            place(e_[k], n, [src](int j) { return src[j]; });
         }
+    }
+    /// e ← the spectrum of n entries whose lane j is f(j), built in place (an assignment would
+    /// build a temporary and copy all kMaxWavelengths lanes of it).
+    template <typename F>
+    static void place(SampledSpectrum& e, int n, F&& f) {
+        ::new (&e) SampledSpectrum(SampledSpectrum::fromLanes(n, f));
     }
 
     SampledSpectrum e_[16];

@@ -193,3 +193,26 @@ TEST(Lanes, TheCheckRejectsAnOperationWithOtherNanOrZeroSemantics) {
     floatOps(false, a.data(), b.data(), 4, out.data(), mask);
     EXPECT_EQ(firstMismatch(a, b, out.data() + size_t(kMin) * 4, [](float x, float y) { return std::min(x, y); }), -1);
 }
+
+TEST(Lanes, FloatDoubleConversionsEqualTheScalarCasts) {
+    // toFloat(Double4) rounds as float(double) (to nearest; overflow to ±∞, NaN stays NaN), and
+    // toDouble(Float4) is exact; a truncating conversion would differ on the random values.
+    std::vector<double> x = {0.0, -0.0, 1.0 + 1e-9, 3.4e38, 3.5e38, -1e-46, 1e-300,
+                             std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+    Pcg32 rng(9, 1);
+    while (x.size() % 4 != 0 || x.size() < 4000) x.push_back((2.0 * rng.uniform() - 1.0) * std::pow(10.0, 60 * rng.uniform() - 30));
+    bool truncationAgrees = true;
+    for (size_t j = 0; j < x.size(); j += 4) {
+        const lanes::Float4 f = lanes::toFloat(lanes::load(x.data() + j));
+        const lanes::Double4 back = lanes::toDouble(f);
+        for (int k = 0; k < 4; ++k) {
+            const double v = x[j + size_t(k)];
+            ASSERT_EQ(std::bit_cast<uint32_t>(f[k]), std::bit_cast<uint32_t>(float(v))) << v;
+            ASSERT_EQ(std::bit_cast<uint64_t>(back[k]), std::bit_cast<uint64_t>(double(float(v)))) << v;
+            // A conversion rounding toward zero instead (the wrong rule the check must reject).
+            const float r = float(v), truncated = std::abs(double(r)) > std::abs(v) ? std::nextafter(r, 0.0f) : r;
+            truncationAgrees = truncationAgrees && (std::isnan(v) || truncated == f[k]);
+        }
+    }
+    EXPECT_FALSE(truncationAgrees);
+}

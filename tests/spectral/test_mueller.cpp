@@ -190,3 +190,25 @@ TEST(Mueller, DepolarizerProductsStayDepolarizing) {
     EXPECT_FLOAT_EQ(ap(0, 1)[0], 0.25f);
     EXPECT_FLOAT_EQ(ap(1, 0)[0], 0.0f);
 }
+
+// A depolarizer added to a general matrix (operator+=, which adds only its (0, 0) entry) equals the
+// sum of the two dense matrices; a sum into another entry is told apart.
+TEST(Mueller, SumWithADepolarizerEqualsTheDenseSum) {
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (int n : {1, 4, 7}) {
+        auto random = [&] { return SampledSpectrum::fromLanes(n, [&](int) { return u(rng); }); };
+        const MuellerSpectrum M = mueller::interfaceMueller(random(), random(), random(), random());
+        const MuellerSpectrum d = MuellerSpectrum::depolarizer(random());
+        MuellerSpectrum sum = M;
+        sum += d;
+        EXPECT_FALSE(sum.interfaceLayout());
+        const MuellerSpectrum dense = d.expanded();
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                for (int l = 0; l < n; ++l) {
+                    EXPECT_EQ(sum(i, j)[l], M(i, j)[l] + dense(i, j)[l]) << i << j;
+                    if (i == 1 && j == 1) EXPECT_NE(sum(i, j)[l], M(i, j)[l] + dense(0, 0)[l]);
+                }
+    }
+}
