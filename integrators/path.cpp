@@ -96,12 +96,15 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
 SampledSpectrum PathIntegrator::directLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf,
                                             const vec3& wo, float uLight, const vec2& uL, const SampledWavelengths& wl,
                                             const SampledSpectrum& beta, PathStats& stats) const {
-    const std::optional<VertexLightSample> s =
-        sampleLightAtSurface(scene, si.p, si.ng, frame, bsdf, wo, uLight, uL, wl, params_.strictNormals);
+    // The radiance is looked up last, for an unoccluded sample the BSDF does not make black (the
+    // same contributions as looking it up first: no sample is drawn in between).
+    std::optional<VertexLightSample> s =
+        sampleLightAtSurface(scene, si.p, si.ng, frame, bsdf, wo, uLight, uL, wl, params_.strictNormals, RadianceLookup::Deferred);
     if (!s) return SampledSpectrum(wl.size());
     ++stats.rays;
     const LightSample& ls = s->ls;
     if (!(ls.infinite ? scene.visibleInfinite(si, ls.wi) : scene.visible(si, ls.pLight, ls.nLight))) return SampledSpectrum(wl.size());
+    if (!resolveRadiance(*s, wl)) return SampledSpectrum(wl.size());
     if (s->light->isDelta()) return beta * s->f * ls.L / s->lightPdf;
     return beta * s->f * ls.L * (powerHeuristic(s->lightPdf, s->scatterPdf) / s->lightPdf);
 }

@@ -20,7 +20,7 @@ namespace {
 void directLightStokes(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf, const vec3& wo,
                        float uLight, const vec2& uL, const SampledWavelengths& wl, const StokesThroughput& T,
                        bool strictNormals, PathStats& stats, StokesVector& est) {
-    std::optional<VertexLightSample> s = sampleChosenLight(scene, si.p, uLight, uL, wl);
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, si.p, uLight, uL, wl, RadianceLookup::Deferred);
     if (!s) return;
     const vec3 wi = frame.toLocal(s->ls.wi);
     if (strictNormals && !sidesAgree(s->ls.wi, si.ng, wi.z)) return;
@@ -34,6 +34,7 @@ void directLightStokes(const Scene& scene, const SurfaceInteraction& si, const F
     MuellerSpectrum M = bsdf.evalMueller(wo, wi, TransportMode::Radiance);
     M *= std::abs(wi.z);  // in place: no copy of the matrix
     if (M(0, 0).isBlack()) return;
+    if (!resolveRadiance(*s, wl)) return;  // looked up last, as in PathIntegrator::directLight
     if (s->light->isDelta()) return T.addThrough(M, ls.L, 1.0f / s->lightPdf, est);
     const float scatterPdf = bsdf.pdf(wo, wi, TransportMode::Radiance);
     T.addThrough(M, ls.L, powerHeuristic(s->lightPdf, scatterPdf) / s->lightPdf, est);

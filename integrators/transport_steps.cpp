@@ -17,11 +17,12 @@ float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from,
 }
 
 std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
-                                                   const SampledWavelengths& wl) {
+                                                   const SampledWavelengths& wl, RadianceLookup lookup) {
     const LightChoice choice = chooseLight(scene, uLight);
     if (!choice.light) return std::nullopt;
-    const std::optional<LightSample> ls = choice.light->sampleLi(p, uL, wl);
-    if (!ls || !(ls->pdf > 0) || ls->L.isBlack()) return std::nullopt;
+    const std::optional<LightSample> ls =
+        lookup == RadianceLookup::Deferred ? choice.light->sampleLiDeferred(p, uL, wl) : choice.light->sampleLi(p, uL, wl);
+    if (!ls || !(ls->pdf > 0) || (!ls->radianceDeferred && ls->L.isBlack())) return std::nullopt;
     VertexLightSample s;
     s.light = choice.light;
     s.ls = *ls;
@@ -29,10 +30,18 @@ std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec
     return s;
 }
 
+bool resolveRadiance(VertexLightSample& s, const SampledWavelengths& wl) {
+    if (s.ls.radianceDeferred) {
+        s.ls.L = s.light->deferredRadiance(s.ls, wl);
+        s.ls.radianceDeferred = false;
+    }
+    return !s.ls.L.isBlack();
+}
+
 std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
                                                       const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
-                                                      const SampledWavelengths& wl, bool strictNormals) {
-    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl);
+                                                      const SampledWavelengths& wl, bool strictNormals, RadianceLookup lookup) {
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl, lookup);
     if (!s) return std::nullopt;
     const vec3 wi = frame.toLocal(s->ls.wi);
     if (strictNormals && !sidesAgree(s->ls.wi, ng, wi.z)) return std::nullopt;

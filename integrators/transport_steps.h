@@ -1,7 +1,8 @@
 // The steps every path-space integrator takes, written once (pbrt-v4 §13.4: SampleLd, the emission
 // MIS of PathIntegrator::Li, Russian roulette; Mitsuba 3 src/integrators/path.cpp and volpath.cpp):
 //   - choosing the light for next-event estimation (uniformly, Mitsuba 3 Scene::sample_emitter),
-//   - sampling it from a surface point with the BSDF evaluated towards it,
+//   - sampling it from a surface point with the BSDF evaluated towards it (its radiance, at the
+//     caller's choice, looked up only once the sample is known to contribute),
 //   - the light-sampling pdf of a direction that reached a light (for MIS at an emitter hit),
 //   - the emission a ray finds (the area light it hit, or every infinite light when it escaped),
 //   - the strict-normals rule and Russian roulette.
@@ -56,10 +57,20 @@ struct VertexLightSample {
     SampledSpectrum f;      // f(wo, wi) · |cos θi| at a surface, the phase function in a medium
 };
 
+/// When next-event estimation looks up the light's radiance: with the sample (a black radiance
+/// then ends the estimate before anything else), or only once the caller knows the sample
+/// contributes (Light::sampleLiDeferred: the environment map's spectral lookup is skipped where the
+/// BSDF is black or the shadow ray occluded; resolveRadiance looks it up).
+enum class RadianceLookup { AtSample, Deferred };
+
 /// chooseLight and the chosen light's sample from point p, its scattering terms (f, scatterPdf) not
 /// yet set; nullopt when there is nothing to light with.
 std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
-                                                   const SampledWavelengths& wl);
+                                                   const SampledWavelengths& wl, RadianceLookup lookup = RadianceLookup::AtSample);
+
+/// The sample's radiance looked up if its light deferred it (RadianceLookup::Deferred); false
+/// when it is black (the sample contributes nothing).
+bool resolveRadiance(VertexLightSample& s, const SampledWavelengths& wl);
 
 /// Next-event estimation's sample at surface point p (geometric normal ng) with shading frame
 /// `frame`, BSDF `bsdf` and wo (local), drawing its light with uLight and its point with uL:
@@ -67,7 +78,8 @@ std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec
 /// wi leaves on the other side of the geometric surface than of the shading one.
 std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
                                                       const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
-                                                      const SampledWavelengths& wl, bool strictNormals);
+                                                      const SampledWavelengths& wl, bool strictNormals,
+                                                      RadianceLookup lookup = RadianceLookup::AtSample);
 
 /// The same at point p in a medium with phase function `phase` and wo (world, towards the previous
 /// vertex).

@@ -99,6 +99,10 @@ float d65(float lambda) { return interpolate(kD65, kD65Count, float(kD65First), 
 namespace {
 IRIS_LANES_INLINE void d65LanesBody(const float* lambda, int count, float* out) {
     TablePositions p;
+    if (count == 4) {  // N ≤ 4 (the common case): the same lane operations, with a constant trip count
+        tablePositions<kD65First, kD65Step, kD65Count>(lambda, 4, p);
+        return blend(kD65, 4, p, out);
+    }
     for (int j0 = 0; j0 < count; j0 += kBlock) {
         const int m = std::min(kBlock, count - j0);
         tablePositions<kD65First, kD65Step, kD65Count>(lambda + j0, m, p);

@@ -25,8 +25,9 @@ struct LightSample {
     float pdf = 0.0f;       // solid-angle density (or 1 for delta lights)
     vec3 pLight{0.0f};      // point on the light (for the shadow ray)
     vec3 nLight{0.0f};      // light surface normal (area lights), for the shadow ray's end offset
-    vec2 uv{0.0f};          // the light surface's uv there (area lights)
+    vec2 uv{0.0f};          // the light surface's uv there (area lights), the map's (u, v) (environment map)
     bool infinite = false;  // shadow ray goes to infinity
+    bool radianceDeferred = false;  // L not looked up yet (Light::sampleLiDeferred): Light::deferredRadiance gives it
 };
 
 /// A ray leaving a light (light tracing and BDPT, pbrt-v4 §12.1 Light::SampleLe, Veach 1997
@@ -61,6 +62,15 @@ public:
 
     /// Sample incident radiance at point p.
     virtual std::optional<LightSample> sampleLi(const vec3& p, const vec2& u, const SampledWavelengths& wl) const = 0;
+    /// sampleLi's sample (the same direction, pdf and shadow-ray target from the same u) whose
+    /// radiance a light with a costly lookup may leave out (radianceDeferred, L empty), for a caller
+    /// that needs it only when the sample contributes: next-event estimation after the BSDF and the
+    /// shadow ray. The default is sampleLi.
+    virtual std::optional<LightSample> sampleLiDeferred(const vec3& p, const vec2& u, const SampledWavelengths& wl) const {
+        return sampleLi(p, u, wl);
+    }
+    /// The radiance sampleLi gives for a sample of sampleLiDeferred (ls.L when it was not deferred).
+    virtual SampledSpectrum deferredRadiance(const LightSample& ls, const SampledWavelengths&) const { return ls.L; }
 
     /// Solid-angle density with which sampleLi would produce direction wi from p. For area lights
     /// `hit` is the intersection with this light along wi from p (found by a ray that may have

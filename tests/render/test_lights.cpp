@@ -3,6 +3,8 @@
 // map's importance sampling (pdf consistency and an unbiased estimate of its integral).
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include "render/film.h"
 #include "core/io/image.h"
 #include "render/renderer.h"
@@ -13,6 +15,7 @@
 #include "spectral/lane_dispatch.h"
 #include "spectral/spectrum_factory.h"
 #include "render/loader/scene_upgrade.h"
+#include "integrators/transport_steps.h"
 
 using namespace iris;
 using namespace iris::testing;
@@ -436,4 +439,95 @@ TEST(Lights, EscapedRaysSeeTheEnvironmentInTheirOwnDirection) {
         EXPECT_NEAR(m, 0.5, 5 * se + 1e-3);
     }
     std::remove(path.c_str());
+}
+
+namespace {
+/// A map with grey, saturated, black and bright texels (black ones give black radiance nearby).
+Image mixedColourMap() {
+    const int w = 12, h = 7;
+    Image img(w, h, 3);
+    const vec3 colours[5] = {vec3(0.75f, 0.25f, 0.125f), vec3(0.5f), vec3(0.0625f, 0.8125f, 2.5f), vec3(0.0f),
+                             vec3(40.0f, 31.0f, 2.0f)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) img.at(x, y, c) = colours[(x * 3 + y) % 5][c];
+    return img;
+}
+
+bool sameBits(const SampledSpectrum& a, const SampledSpectrum& b, int n) {
+    for (int i = 0; i < n; ++i)
+        if (std::bit_cast<uint32_t>(a[i]) != std::bit_cast<uint32_t>(b[i])) return false;
+    return true;
+}
+}  // namespace
+
+TEST(Lights, EnvironmentMapDeferredRadianceIsSampleLisRadiance) {
+    // Next-event estimation may take the environment map's sample without its radiance
+    // (sampleLiDeferred) and look it up once the sample contributes (deferredRadiance): the same
+    // direction, pdf and radiance bits as sampleLi, in RGB and spectral mode, for both placements.
+    // The comparison can fail: the radiance read at a wrong (u, v) differs.
+    const Image img = mixedColourMap();
+    const SampledWavelengths sets[3] = {SampledWavelengths::rgb(defaultChannelWavelengths()), SampledWavelengths::sampleVisible(0.3f, 4),
+                                        SampledWavelengths::sampleVisible(0.7f, 8)};
+    for (int version : {0, 3}) {
+        const LightPtr env = envmapFromImage(img, "iris_env_deferred.exr", version);
+        for (const SampledWavelengths& wl : sets) {
+            Sampler rng(uint64_t(7 + version));
+            int wrongDiffers = 0;
+            for (int i = 0; i < 400; ++i) {
+                const vec2 u = rng.get2D();
+                const auto ls = env->sampleLi(vec3(0.0f), u, wl);
+                auto ld = env->sampleLiDeferred(vec3(0.0f), u, wl);
+                ASSERT_TRUE(ls && ld);
+                EXPECT_FALSE(ls->radianceDeferred);
+                ASSERT_TRUE(ld->radianceDeferred);
+                ASSERT_EQ(ls->wi, ld->wi);
+                ASSERT_EQ(ls->pdf, ld->pdf);
+                ASSERT_TRUE(sameBits(env->deferredRadiance(*ld, wl), ls->L, wl.size())) << "version " << version << " sample " << i;
+                ASSERT_TRUE(sameBits(env->deferredRadiance(*ls, wl), ls->L, wl.size()));
+                ld->uv.x = std::fmod(ld->uv.x + 0.5f, 1.0f);  // deliberately wrong
+                wrongDiffers += !sameBits(env->deferredRadiance(*ld, wl), ls->L, wl.size());
+            }
+            EXPECT_GT(wrongDiffers, 200) << "version " << version;
+        }
+    }
+}
+
+TEST(Lights, ResolveRadianceLooksUpDeferredSamplesAndRejectsBlackOnes) {
+    // resolveRadiance (integrators/transport_steps.h) fills in a deferred sample's radiance, keeps
+    // a sample that was not deferred (a constant light's), and reports a black radiance as no
+    // contribution: an all-black map is rejected after the lookup.
+    const SampledWavelengths wl = SampledWavelengths::sampleVisible(0.45f, 4);
+    const LightPtr env = envmapFromImage(mixedColourMap(), "iris_env_resolve.exr");
+    Image black(8, 5, 3);
+    for (float& x : black.pixels) x = 0.0f;
+    const LightPtr dark = envmapFromImage(black, "iris_env_resolve_black.exr");
+    const LightPtr constant = LightRegistry::instance().create(Properties("emitter", "constant", SourceLocation{"<test>", 1}));
+    Sampler rng(11);
+    int lit = 0;
+    for (int i = 0; i < 200; ++i) {
+        const vec2 u = rng.get2D();
+        VertexLightSample s;
+        s.light = env.get();
+        s.ls = *env->sampleLiDeferred(vec3(0.0f), u, wl);
+        const SampledSpectrum expected = env->sampleLi(vec3(0.0f), u, wl)->L;
+        EXPECT_EQ(resolveRadiance(s, wl), !expected.isBlack());
+        EXPECT_FALSE(s.ls.radianceDeferred);
+        EXPECT_TRUE(sameBits(s.ls.L, expected, wl.size()));
+        lit += !expected.isBlack();
+
+        VertexLightSample d;
+        d.light = dark.get();
+        d.ls = *dark->sampleLiDeferred(vec3(0.0f), u, wl);
+        EXPECT_FALSE(resolveRadiance(d, wl));
+
+        VertexLightSample c;
+        c.light = constant.get();
+        c.ls = *constant->sampleLiDeferred(vec3(0.0f), u, wl);
+        EXPECT_FALSE(c.ls.radianceDeferred);
+        const SampledSpectrum before = c.ls.L;
+        EXPECT_TRUE(resolveRadiance(c, wl));
+        EXPECT_TRUE(sameBits(c.ls.L, before, wl.size()));
+    }
+    EXPECT_GT(lit, 100);
 }
