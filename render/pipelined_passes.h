@@ -12,9 +12,8 @@
 
 namespace iris {
 
-/// Runs body(tile, pass) for pass in [firstPass, endPass) and tile in [0, nTiles) on the calling
-/// thread and as many more as the current tbb::global_control parallelism allows (the renderer's
-/// --threads), (p, t) after (p − 1, t).
+/// Runs body(tile, pass) for pass in [firstPass, endPass) and tile in [0, nTiles) on TBB's
+/// threads (at most the current tbb::global_control parallelism), (p, t) after (p − 1, t).
 /// `stop()` is asked before each item: once it is true no further item starts (items already
 /// started finish). An exception from a body stops the others and is rethrown. Returns the number
 /// of items finished.

@@ -272,11 +272,16 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     // Without checkpoints, a time limit or splats nothing needs the film between passes, and
     // the passes run without a barrier (render/pipelined_passes.h); the same image either way.
     const bool pipelined = !splats && !checkpoints && !(opt_.timeLimit > 0);
-    if (pipelined)
+    if (pipelined) {
+        ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
+        forkJoin.fork();
         runPipelinedPasses(nTiles, int(firstSample), target, [&](int tile, int s) {
+            const ForkJoin::Body body(forkJoin);
             renderTile(tile, s, states.local());
             tileFinished(s);
         }, stopRequested);
+        forkJoin.join();
+    }
     for (int s = int(firstSample); !pipelined && s < target; ++s) {  // pass by pass
         // Do not start a pass that cannot finish within the time limit.
         if (opt_.timeLimit > 0 && s > int(firstSample) && secondsSince(start) + passSeconds > opt_.timeLimit) {
@@ -286,7 +291,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (stopRequested()) break;
         const auto passStart = Clock::now();
         tilesDone = 0;
-        ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
+        ForkJoin forkJoin;
         forkJoin.fork();
         tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int>& range) {
             const ForkJoin::Body body(forkJoin);
