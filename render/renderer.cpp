@@ -17,7 +17,6 @@
 #include "core/io/output_file.h"
 #include "core/tsan_fork_join.h"
 #include "render/integrator.h"
-#include "render/pipelined_passes.h"
 #include "render/polarized_sample.h"
 #include "render/samplers/sampler_description.h"
 #include "render/splat_film.h"
@@ -218,71 +217,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     std::optional<Film> lastComplete;
     if (checkpoints) lastComplete = film;
 
-    // One tile of pass s: every pixel's sample s, accumulated by this thread.
-    auto renderTile = [&](int tile, int s, ThreadState& ts) {
-        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-        for (int y = y0; y < std::min(y0 + kTile, h); ++y)
-            for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
-                const uint64_t pixelIndex = uint64_t(y) * w + x;
-                Sampler sampler(opt_.seed, pixelIndex, uint64_t(opt_.firstSample) + uint64_t(s), pattern_);
-                SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
-                                        : opt_.independentWavelengths ? independentWavelengths(sampler, opt_)
-                                        : opt_.uniformWavelengths
-                                            ? SampledWavelengths::sampleUniform(sampler.get1D(), opt_.spectralSamples)
-                                            : SampledWavelengths::sampleVisible(sampler.get1D(), opt_.spectralSamples);
-                const FilterSample fs = filter->sample(sampler.get2D());
-                const Ray ray = camera.sensor->generateRay(vec2(x + 0.5f, y + 0.5f) + fs.offset);
-                ts.arena.reset();
-                StokesVector S;
-                SampledSpectrum L = splats ? integrator->sample(scene_, ray, wl, sampler, ts.arena, ts.stats, *splats)
-                                  : opt_.polarized ? polarizedSample(*integrator, scene_, ray, wl, sampler, ts.arena, ts.stats, &S)
-                                                   : integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
-                vec3 value;
-                if (opt_.rgbMode)
-                    value = vec3(L[0], L[1], L[2]);
-                else
-                    value = toXYZ(L, wl);
-                const bool valid = isFinite(value) && !L.hasNegative() && (!opt_.polarized || validStokes(S));
-                if (!valid) {
-                    ++ts.invalid;
-                    value = vec3(0.0f);
-                }
-                if (splats) {
-                    splats->add(x, y, fs.weight * value);
-                    continue;
-                }
-                film.addSample(x, y, fs.weight == 1.0f ? value : fs.weight * value);
-                if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
-                if (stokes) stokes->addSample(x, y, S, wl, fs.weight, valid);
-            }
-    };
-    // After each tile of pass s: the test hook and the progress (tiles finished of all passes).
-    const double totalItems = double(nTiles) * double(std::max(1, target - int(firstSample)));
-    auto tileFinished = [&](int s) {
-        const uint64_t finished = ++tilesFinished;
-        if (opt_.onTileFinished) opt_.onTileFinished(finished, nTiles);
-        if (opt_.progress || opt_.progressOut) {
-            const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit : double(finished) / totalItems;
-            if (opt_.progressOut) opt_.progressOut->store(frac, std::memory_order_relaxed);
-            if (opt_.progress)
-                progress.update(frac, strCat(s + 1, "/", unlimitedSpp ? std::string("?") : std::to_string(target), " spp"));
-        }
-    };
-
-    // Without checkpoints, a time limit or splats nothing needs the film between passes, and
-    // the passes run without a barrier (render/pipelined_passes.h); the same image either way.
-    const bool pipelined = !splats && !checkpoints && !(opt_.timeLimit > 0);
-    if (pipelined) {
-        ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
-        forkJoin.fork();
-        runPipelinedPasses(nTiles, int(firstSample), target, [&](int tile, int s) {
-            const ForkJoin::Body body(forkJoin);
-            renderTile(tile, s, states.local());
-            tileFinished(s);
-        }, stopRequested);
-        forkJoin.join();
-    }
-    for (int s = int(firstSample); !pipelined && s < target; ++s) {  // pass by pass
+    for (int s = int(firstSample); s < target; ++s) {
         // Do not start a pass that cannot finish within the time limit.
         if (opt_.timeLimit > 0 && s > int(firstSample) && secondsSince(start) + passSeconds > opt_.timeLimit) {
             rs.timeLimited = true;
@@ -291,16 +226,57 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         if (stopRequested()) break;
         const auto passStart = Clock::now();
         tilesDone = 0;
-        ForkJoin forkJoin;
+        ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
         forkJoin.fork();
         tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int>& range) {
             const ForkJoin::Body body(forkJoin);
             ThreadState& ts = states.local();
             for (int tile = range.begin(); tile != range.end(); ++tile) {
                 if (stopRequested()) return;
-                renderTile(tile, s, ts);
-                ++tilesDone;
-                tileFinished(s);
+                const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+                for (int y = y0; y < std::min(y0 + kTile, h); ++y)
+                    for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
+                        const uint64_t pixelIndex = uint64_t(y) * w + x;
+                        Sampler sampler(opt_.seed, pixelIndex, uint64_t(opt_.firstSample) + uint64_t(s), pattern_);
+                        SampledWavelengths wl = opt_.rgbMode ? SampledWavelengths::rgb(opt_.rgbWavelengths)
+                                                : opt_.independentWavelengths ? independentWavelengths(sampler, opt_)
+                                                : opt_.uniformWavelengths
+                                                    ? SampledWavelengths::sampleUniform(sampler.get1D(), opt_.spectralSamples)
+                                                    : SampledWavelengths::sampleVisible(sampler.get1D(), opt_.spectralSamples);
+                        const FilterSample fs = filter->sample(sampler.get2D());
+                        const Ray ray = camera.sensor->generateRay(vec2(x + 0.5f, y + 0.5f) + fs.offset);
+                        ts.arena.reset();
+                        StokesVector S;
+                        SampledSpectrum L = splats ? integrator->sample(scene_, ray, wl, sampler, ts.arena, ts.stats, *splats)
+                                          : opt_.polarized ? polarizedSample(*integrator, scene_, ray, wl, sampler, ts.arena, ts.stats, &S)
+                                                           : integrator->Li(scene_, ray, wl, sampler, ts.arena, ts.stats);
+                        vec3 value;
+                        if (opt_.rgbMode)
+                            value = vec3(L[0], L[1], L[2]);
+                        else
+                            value = toXYZ(L, wl);
+                        const bool valid = isFinite(value) && !L.hasNegative() && (!opt_.polarized || validStokes(S));
+                        if (!valid) {
+                            ++ts.invalid;
+                            value = vec3(0.0f);
+                        }
+                        if (splats) {
+                            splats->add(x, y, fs.weight * value);
+                            continue;
+                        }
+                        film.addSample(x, y, fs.weight == 1.0f ? value : fs.weight * value);
+                        if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
+                        if (stokes) stokes->addSample(x, y, S, wl, fs.weight, valid);
+                    }
+                const int done = ++tilesDone;
+                if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);
+                if (opt_.progress || opt_.progressOut) {
+                    const double frac = unlimitedSpp ? secondsSince(start) / opt_.timeLimit
+                                                     : (double(s - firstSample) + double(done) / nTiles) / double(target - firstSample);
+                    if (opt_.progressOut) opt_.progressOut->store(frac, std::memory_order_relaxed);
+                    if (opt_.progress)
+                        progress.update(frac, strCat(s + 1, "/", unlimitedSpp ? std::string("?") : std::to_string(target), " spp"));
+                }
             }
         });
         forkJoin.join();

@@ -2,10 +2,7 @@
 // Each sample's random stream depends only on (seed, pixel, sample index) and every pixel is
 // accumulated by one thread in sample order, so images are bit-identical for any thread count,
 // and a resumed render equals an uninterrupted one. Cancellation (Ctrl-C) and the time limit stop
-// between tiles; whatever was rendered is kept. With checkpoints, a time limit or a splatting
-// integrator the passes are separated by a barrier (the film is complete after each); otherwise a
-// thread may start pass p + 1 of one tile while pass p of others runs (render/pipelined_passes.h),
-// so an interrupted film holds every finished tile of at most two passes.
+// between tiles; whatever was rendered is kept.
 #pragma once
 
 #include <atomic>
@@ -43,10 +40,8 @@ struct RenderOptions {
     double checkpointEvery = 0;    // seconds between checkpoints (0 = only at the end/interrupt)
     bool resume = false;           // continue from checkpointPath
     // Called after every finished tile, on the worker thread that rendered it, with the number of
-    // tiles (of any pass) finished in this render() call and the tiles per pass. With the barrier
-    // between passes, a pass is finished when the count reaches a multiple of it; without it (see
-    // above), the count reaching k · tilesPerPass means at least k − 1 passes are. Interruption
-    // tests use it to stop at an exact point.
+    // tiles finished in this render() call and the tiles per pass (a pass is finished when the
+    // count reaches a multiple of it). Interruption tests use it to stop at an exact point.
     std::function<void(uint64_t tilesFinished, int tilesPerPass)> onTileFinished;
 };
 
