@@ -505,7 +505,7 @@ def t7_scaling_memory(ctx):
 def process_pair_scaling(ctx, scene, spp, reps):
     """The machine's scaling with nothing shared: one 1-thread render alone, then two started together
     (two processes); 2 · t_alone / mean(t_pair) per repetition. What iris's 2 threads lose below
-    this is the render loop's shared work (pass barriers, film, allocation); what this loses below 2
+    this is what the threads share (film, thread pool, caches); what this loses below 2
     is the machine's (shared caches and memory bandwidth, clock boost, the hypervisor)."""
     ratios = []
     for _ in range(reps):
@@ -806,8 +806,9 @@ def scaling_text(ctx):
             f"Model: two independent 1-thread renders run at once reach {pair:.2f}× (nothing of iris is shared "
             "between them: this is the machine's limit, from shared caches, memory bandwidth, clock boost and the "
             f"hypervisor), and iris's two threads reach {sc['speedup_median']:.2f}×, {sc['speedup_median'] / pair:.2f} "
-            "of that limit; the rest is the render loop's shared work (a barrier after every pass of one sample "
-            "per pixel, the film, the thread pool). The 2-thread run used "
+            "of that limit. The render loop's barrier after every pass is not where the rest goes: passes run "
+            "without it (commits a7cdc49, 6770d27, reverted in 7b3f197) gave the same 2-thread time (new/old "
+            "median 1.002 over 30 interleaved pairs). The 2-thread run used "
             f"{c:.2f}× the CPU time of the 1-thread run. ")
     if la > 0.75 * os.cpu_count():
         text += (f"The 1-minute load average was up to {la:.1f} on {os.cpu_count()} CPUs: other work was competing "
