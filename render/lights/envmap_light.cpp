@@ -19,16 +19,23 @@
 // convention's Mitsuba does (see lookup()).
 //
 // Cost (issue 37): every texel's scale, cell corners and corner weights are computed once, with
-// the grid (TexelShape); a lookup gathers the at most 16 corner nodes of its four texels, takes a
-// node that several texels share once with the sum of their weights (same-cell texels, the common
-// case, need no search), and evaluates each node's sigmoid for all wavelengths in SIMD lanes, two
-// nodes per AVX2 instruction for N ≤ 4. Bunny scene (experiments/perf/scenes/bunny.xml), N = 4:
-// 3890 → 880 instructions per lookup (callgrind, the kernel included). Next-event estimation takes
-// the sample without its radiance (sampleLiDeferred) and looks it up (deferredRadiance) only where
-// the BSDF is not black and the shadow ray unoccluded (integrators/transport_steps.h,
-// RadianceLookup): 1.79 → 1.45 lookups per camera sample on the bunny (callgrind call counts of
-// lookup, `render experiments/perf/scenes/bunny.xml -D res=64 --spp 66` minus `--spp 2`,
-// --threads 1 --seed 1, N = 4 and RGB alike).
+// the grid (EnvmapTexelShape); so is, per 2×2 texel block, the merged list of the at most 16 corner
+// nodes of its four texels (EnvmapNodeBlocks, render/lights/envmap_node_blocks.h: first-appearance
+// order, each texel's corner weight per node, about 130 bytes per texel, capped at
+// kMaxBlockBytes), so that a lookup's node weights are four products and three sums per four nodes
+// in the general merge's order (bit-identical). Where that does not apply (a pole row, a black
+// texel, a block past the cap, a contribution that underflows) the lookup merges node by node,
+// taking a node that several texels share once with the sum of its weights. Each node's sigmoid
+// is evaluated for all wavelengths in SIMD lanes, two nodes per AVX2 instruction for N ≤ 4. Next-
+// event estimation takes the sample without its radiance (sampleLiDeferred) and looks it up
+// (deferredRadiance) only where the BSDF is not black and the shadow ray unoccluded
+// (integrators/transport_steps.h, RadianceLookup): 1.79 → 1.45 lookups per camera sample.
+// Bunny scene (experiments/perf/scenes/bunny.xml), N = 4, instructions per lookup with the kernel
+// (callgrind, inclusive cost of lookup and its call count, `render experiments/perf/scenes/bunny.xml
+// -D res=64 --spp 66` minus `--spp 2`, --threads 1 --seed 1): 3890 → 880 (per-texel shapes and the
+// SIMD kernel) → 617 (block node lists; 15 of the 392 944 lookups of the 66-spp run take the general
+// merge). The block lists add about 176 M instructions, once, to the grid's construction on the
+// first spectral lookup.
 #include <atomic>
 #include <cstdint>
 #include <cstring>
