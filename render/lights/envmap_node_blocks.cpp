@@ -52,16 +52,6 @@ EnvmapNodeBlocks::EnvmapNodeBlocks(const std::vector<EnvmapTexelShape>& texels, 
         }
 }
 
-void EnvmapNodeBlocks::weights(int block, lanes::Float4 w, float* out) const {
-    const uint32_t h = header_[size_t(block)];
-    const Group* g = group_.data() + (h & kOffsetMask);
-    const int groups = (int(h >> kOffsetBits) + 3) / 4;
-    const lanes::Float4 w0 = lanes::broadcast(w[0]), w1 = lanes::broadcast(w[1]), w2 = lanes::broadcast(w[2]),
-                        w3 = lanes::broadcast(w[3]);
-    for (int i = 0; i < groups; ++i, ++g)  // ((p0·W0 + p1·W1) + p2·W2) + p3·W3, the merge's texel order
-        lanes::store(out + 4 * i, ((g->p[0] * w0 + g->p[1] * w1) + g->p[2] * w2) + g->p[3] * w3);
-}
-
 size_t EnvmapNodeBlocks::bytes() const {
     return header_.size() * sizeof(uint32_t) + group_.size() * sizeof(Group) + node_.size() * sizeof(uint16_t);
 }

@@ -45,8 +45,16 @@ public:
     /// The block's node count (0: not stored) and node list.
     int count(int block) const { return int(header_[size_t(block)] >> kOffsetBits); }
     const uint16_t* nodes(int block) const { return node_.data() + 4 * size_t(header_[size_t(block)] & kOffsetMask); }
-    /// Node weights Σ_k p_kj · W_k (texel order) of a stored block into out[0 … count rounded up to 4).
-    void weights(int block, lanes::Float4 w, float* out) const;
+    /// Node weights Σ_k p_kj · W_k (texel order) of a stored block into out[0 … count rounded up to
+    /// 4): ((p0·W0 + p1·W1) + p2·W2) + p3·W3, the merge's texel order. Inline: it runs per lookup.
+    void weights(int block, lanes::Float4 w, float* out) const {
+        const uint32_t h = header_[size_t(block)];
+        const Group* g = group_.data() + (h & kOffsetMask);
+        const int groups = (int(h >> kOffsetBits) + 3) / 4;
+        const lanes::Float4 w0 = lanes::broadcast(w[0]), w1 = lanes::broadcast(w[1]), w2 = lanes::broadcast(w[2]),
+                            w3 = lanes::broadcast(w[3]);
+        for (int i = 0; i < groups; ++i, ++g) lanes::store(out + 4 * i, ((g->p[0] * w0 + g->p[1] * w1) + g->p[2] * w2) + g->p[3] * w3);
+    }
 
     size_t bytes() const;
 
