@@ -33,7 +33,7 @@
 // Bunny scene (experiments/perf/scenes/bunny.xml), N = 4, instructions per lookup with the kernel
 // (callgrind, inclusive cost of lookup and its call count, `render experiments/perf/scenes/bunny.xml
 // -D res=64 --spp 66` minus `--spp 2`, --threads 1 --seed 1): 3890 → 880 (per-texel shapes and the
-// SIMD kernel) → 617 (block node lists; 15 of the 392 944 lookups of the 66-spp run take the general
+// SIMD kernel) → 602 (block node lists; 15 of the 392 944 lookups of the 66-spp run take the general
 // merge). The block lists add about 176 M instructions, once, to the grid's construction on the
 // first spectral lookup.
 #include <atomic>
