@@ -115,27 +115,37 @@ IRIS_LANES_KERNEL(void, d65LanesKernel, d65LanesBody, (const float* lambda, int 
 void d65Lanes(const float* lambda, int count, float* out) { d65LanesKernel(lanes::useAvx2For(count), lambda, count, out); }
 
 namespace {
-IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* weight, int n) {
-    Float4 sum = {0.0f, 0.0f, 0.0f, 0.0f};
+// sum += Σ_{j<m} weight[j] · xyzBar(lambda[j]) in j order, for the `padded` (m rounded up to 4,
+// at most kBlock) lanes from lambda, weight.
+IRIS_LANES_INLINE void addWeightedXyzBar(const float* lambda, const float* weight, int m, int padded, Float4& sum) {
     const CmfRows& rows = cmfRows();
     TablePositions p;
     alignas(16) float oneMinusT[kBlock], wIn[kBlock];
+    tablePositions<kCmfFirst, 1, kCmfCount>(lambda, padded, p);
+    // The term of xyzBar's plain loop is w · (inside ? v : 0) with v the blend. Here it is
+    // (w · inside) · v: for inside = 1 the same product; for inside = 0 both are w · 0 (±0, or
+    // NaN for an infinite w), because v is finite and ≥ 0 (at the clamped node 0, t = 0).
+    for (int j = 0; j < padded; ++j) {
+        oneMinusT[j] = 1.0f - p.frac[j];
+        wIn[j] = weight[j] * p.inside[j];
+    }
+    for (int j = 0; j < m; ++j) {
+        const Float4 a = rows.row[p.index[j]];
+        const Float4 b = rows.row[p.index[j] + 1];
+        // As xyzBar per component, (1 − t)·a + t·b; the scalars are broadcast to all four.
+        sum += wIn[j] * (oneMinusT[j] * a + p.frac[j] * b);
+    }
+}
+
+IRIS_LANES_INLINE vec3 weightedXyzBarSumBody(const float* lambda, const float* weight, int n) {
+    Float4 sum = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (n <= 4) {  // N ≤ 4 (the common case): the same lane operations, with a constant lane count
+        addWeightedXyzBar(lambda, weight, n, 4, sum);
+        return vec3(sum[0], sum[1], sum[2]);
+    }
     for (int j0 = 0; j0 < n; j0 += kBlock) {
-        const int m = std::min(kBlock, n - j0), padded = (m + 3) & ~3;
-        tablePositions<kCmfFirst, 1, kCmfCount>(lambda + j0, padded, p);
-        // The term of xyzBar's plain loop is w · (inside ? v : 0) with v the blend. Here it is
-        // (w · inside) · v: for inside = 1 the same product; for inside = 0 both are w · 0 (±0, or
-        // NaN for an infinite w), because v is finite and ≥ 0 (at the clamped node 0, t = 0).
-        for (int j = 0; j < padded; ++j) {
-            oneMinusT[j] = 1.0f - p.frac[j];
-            wIn[j] = weight[j0 + j] * p.inside[j];
-        }
-        for (int j = 0; j < m; ++j) {
-            const Float4 a = rows.row[p.index[j]];
-            const Float4 b = rows.row[p.index[j] + 1];
-            // As xyzBar per component, (1 − t)·a + t·b; the scalars are broadcast to all four.
-            sum += wIn[j] * (oneMinusT[j] * a + p.frac[j] * b);
-        }
+        const int m = std::min(kBlock, n - j0);
+        addWeightedXyzBar(lambda + j0, weight + j0, m, (m + 3) & ~3, sum);
     }
     return vec3(sum[0], sum[1], sum[2]);
 }

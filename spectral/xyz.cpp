@@ -5,9 +5,14 @@
 namespace iris {
 
 namespace {
-// w = L/pdf, 0 where pdf = 0, for `padded` lanes; baseline and AVX2 builds (lane_dispatch.h).
+// w = L/pdf, 0 where pdf = 0, for `padded` lanes, four per operation (GCC leaves the plain loop
+// scalar: the division's select is not if-converted); baseline and AVX2 builds (lane_dispatch.h).
+// A lane whose pdf is 0 divides too, and its quotient is discarded by the select.
 IRIS_LANES_INLINE void weightsBody(const float* l, const float* pdf, int padded, float* w) {
-    for (int i = 0; i < padded; ++i) w[i] = pdf[i] != 0.0f ? l[i] / pdf[i] : 0.0f;
+    for (int i = 0; i < padded; i += 4) {
+        const lanes::Float4 p = lanes::load(pdf + i);
+        lanes::store(w + i, lanes::select(p != 0.0f, lanes::load(l + i) / p, lanes::broadcast(0.0f)));
+    }
 }
 IRIS_LANES_KERNEL(void, weights, weightsBody, (const float* l, const float* pdf, int padded, float* w), (l, pdf, padded, w))
 }  // namespace

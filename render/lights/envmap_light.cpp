@@ -19,16 +19,23 @@
 // convention's Mitsuba does (see lookup()).
 //
 // Cost (issue 37): every texel's scale, cell corners and corner weights are computed once, with
-// the grid (TexelShape); a lookup gathers the at most 16 corner nodes of its four texels, takes a
-// node that several texels share once with the sum of their weights (same-cell texels, the common
-// case, need no search), and evaluates each node's sigmoid for all wavelengths in SIMD lanes, two
-// nodes per AVX2 instruction for N ≤ 4. Bunny scene (experiments/perf/scenes/bunny.xml), N = 4:
-// 3890 → 880 instructions per lookup (callgrind, the kernel included). Next-event estimation takes
-// the sample without its radiance (sampleLiDeferred) and looks it up (deferredRadiance) only where
-// the BSDF is not black and the shadow ray unoccluded (integrators/transport_steps.h,
-// RadianceLookup): 1.79 → 1.45 lookups per camera sample on the bunny (callgrind call counts of
-// lookup, `render experiments/perf/scenes/bunny.xml -D res=64 --spp 66` minus `--spp 2`,
-// --threads 1 --seed 1, N = 4 and RGB alike).
+// the grid (EnvmapTexelShape); so is, per 2×2 texel block, the merged list of the at most 16 corner
+// nodes of its four texels (EnvmapNodeBlocks, render/lights/envmap_node_blocks.h: first-appearance
+// order, each texel's corner weight per node, about 130 bytes per texel, capped at
+// kMaxBlockBytes), so that a lookup's node weights are four products and three sums per four nodes
+// in the general merge's order (bit-identical). Where that does not apply (a pole row, a black
+// texel, a block past the cap, a contribution that underflows) the lookup merges node by node,
+// taking a node that several texels share once with the sum of its weights. Each node's sigmoid
+// is evaluated for all wavelengths in SIMD lanes, two nodes per AVX2 instruction for N ≤ 4. Next-
+// event estimation takes the sample without its radiance (sampleLiDeferred) and looks it up
+// (deferredRadiance) only where the BSDF is not black and the shadow ray unoccluded
+// (integrators/transport_steps.h, RadianceLookup): 1.79 → 1.45 lookups per camera sample.
+// Bunny scene (experiments/perf/scenes/bunny.xml), N = 4, instructions per lookup with the kernel
+// (callgrind, inclusive cost of lookup and its call count, `render experiments/perf/scenes/bunny.xml
+// -D res=64 --spp 66` minus `--spp 2`, --threads 1 --seed 1): 3890 → 880 (per-texel shapes and the
+// SIMD kernel) → 602 (block node lists; 15 of the 392 944 lookups of the 66-spp run take the general
+// merge). The block lists add about 176 M instructions, once, to the grid's construction on the
+// first spectral lookup.
 #include <atomic>
 #include <cstdint>
 #include <cstring>
@@ -36,6 +43,7 @@
 
 #include "core/io/image.h"
 #include "render/lights/envmap_lattice.h"
+#include "render/lights/envmap_node_blocks.h"
 #include "render/lights/light.h"
 #include "core/registry.h"
 #include "core/sampling.h"
@@ -46,6 +54,9 @@ namespace iris {
 namespace {
 
 constexpr int kGrid = 17;
+// Memory cap of the per-block node lists (EnvmapNodeBlocks; blocks beyond it merge in general):
+// about 130 bytes per texel, 17 MB for the 512×256 museum map.
+constexpr size_t kMaxBlockBytes = size_t(32) << 20;
 
 /// A grid node's illuminant shape, RGBSpectrum::shapeValue = scale · (grey ? level : S(poly)).
 struct GridNode {
@@ -293,19 +304,33 @@ private:
             lanes::store(tl + i, (lanes::load(wl.lambdas() + i) - 360.0f) * (1.0f / 470.0f));
             lanes::store(acc + i, lanes::broadcast(0.0f));
         }
+        uint16_t nodeBuf[16];
+        alignas(16) float weightOf[16];
+        const uint16_t* nodeOf = nodeBuf;
+        float scale = 0.0f;
+        int count = blockMerge(t, weightOf, nodeOf, scale);
+        if (count < 0) count = mergeNodes(t, nodeBuf, weightOf, scale);
+        addNodeShapes(nodes_.data(), nodeOf, weightOf, count, tl, padded, clampFree_, acc);
+        if (scale <= 0) return s;
+        const float common = d65Factor_ * (lattice_.separateScale ? scale : 1.0f);
+        const float* d65 = wl.d65Lanes();  // cie::d65 at the path's wavelengths, computed at sampling
+        for (int i = 0; i < n; ++i) s[i] = acc[i] * (common * d65[i]);
+        return s;
+    }
+
+    /// The four texels' corner nodes and weights, node by node (the general merge): returns the node
+    /// count, fills nodeOf and weightOf, adds the interpolated scale to `scale`.
+    int mergeNodes(const Taps& t, uint16_t* nodeOf, float* weightOf, float& scale) const {
         // The four texels' corner nodes and weights, a node that several texels share taken once
         // with the sum of its weights (neighbouring texels mostly lie in the same grid cell: about
         // 6 distinct nodes of 16 on the museum map). The sum is the same as texel by texel up to
         // float rounding.
-        uint16_t nodeOf[16];
-        float weightOf[16];
         int count = 0;
-        float scale = 0.0f;
-        const TexelShape* first = nullptr;  // the first texel with weight
+        const EnvmapTexelShape* first = nullptr;  // the first texel with weight
         bool sameCell = true;               // every texel with weight uses first's nodes
         for (int k = 0; k < 4; ++k) {
             if (t.weight[k] <= 0) continue;
-            const TexelShape& texel = texelShapes_[t.index[k]];
+            const EnvmapTexelShape& texel = texelShapes_[t.index[k]];
             const float m = texel.m;
             if (m <= 0) continue;
             const float weight = t.weight[k] * (lattice_.separateScale ? 1.0f : m);
@@ -346,29 +371,32 @@ private:
                     nodeOf[count] = first->node[j];
                     weightOf[count++] = weightOf[j];
                 }
-        addNodeShapes(nodes_.data(), nodeOf, weightOf, count, tl, padded, clampFree_, acc);
-        if (scale <= 0) return s;
-        const float common = d65Factor_ * (lattice_.separateScale ? scale : 1.0f);
-        const float* d65 = wl.d65Lanes();  // cie::d65 at the path's wavelengths, computed at sampling
-        for (int i = 0; i < n; ++i) s[i] = acc[i] * (common * d65[i]);
-        return s;
+        return count;
     }
 
-    /// A texel's chromaticity c/m (max component 1) located in the grid: its scale m and the
-    /// trilinear weights of its cell's corners, those with a nonzero weight in corner order (a
-    /// component equal to m gives c/m = 1 exactly, so the corners below it weigh 0: at most four
-    /// remain; unused entries have weight 0).
-    struct TexelShape {
-        float m = 0;
-        float p[4] = {0, 0, 0, 0};
-        uint16_t node[4] = {0, 0, 0, 0};  // index into nodes_
-        /// The four node indices as one number: equal for texels of the same cell.
-        uint64_t cell() const {
-            uint64_t c;
-            std::memcpy(&c, node, sizeof c);
-            return c;
+    /// mergeNodes from the block's precomputed node list (EnvmapNodeBlocks), the same nodes, order
+    /// and weights bit for bit, where it applies: the texels form block index[0] (u wraps to the
+    /// next column, and the rows differ: not clamped at a pole), the block is stored, and every
+    /// texel's least contribution pMin · W_k is positive (then all are, rounding being monotonic).
+    /// Returns −1 where it does not apply.
+    int blockMerge(const Taps& t, float* weightOf, const uint16_t*& nodeOf, float& scale) const {
+        if (t.index[2] == t.index[0] || !lattice_.u.periodic) return -1;
+        const int block = t.index[0];
+        const int count = blocks_.count(block);
+        if (count == 0) return -1;
+        lanes::Float4 w;
+        float s = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            const EnvmapTexelShape& texel = texelShapes_[t.index[k]];
+            w[k] = t.weight[k] * (lattice_.separateScale ? 1.0f : texel.m);
+            if (!(texel.pMin * w[k] > 0)) return -1;
+            s += t.weight[k] * texel.m;
         }
-    };
+        blocks_.weights(block, w, weightOf);
+        nodeOf = blocks_.nodes(block);
+        scale = s;
+        return count;
+    }
 
     static int gridIndex(int x, int y, int z) { return (z * kGrid + y) * kGrid + x; }
 
@@ -381,7 +409,7 @@ private:
             const vec3& c = rgb_[i];
             const float m = std::max({c.x, c.y, c.z});
             if (m <= 0) continue;
-            TexelShape& texel = texelShapes_[i];
+            EnvmapTexelShape& texel = texelShapes_[i];
             texel.m = m;
             const vec3 g = c / m * float(kGrid - 1);
             const int x0 = std::min(int(g.x), kGrid - 2), y0 = std::min(int(g.y), kGrid - 2), z0 = std::min(int(g.z), kGrid - 2);
@@ -399,9 +427,11 @@ private:
                 }
                 texel.p[used] = p;
                 texel.node[used] = uint16_t(slot);
+                texel.pMin = std::min(texel.pMin, p);
                 ++used;
             }
         }
+        blocks_ = EnvmapNodeBlocks(texelShapes_, img_.width, img_.height, kMaxBlockBytes);
         // For t = (λ − 360)/470 ∈ [0, 1] (every lane's λ is in [kLambdaMin, kLambdaMax]) the
         // polynomial stays within |c0| + |c1| + |c2| (times 1 + 3 float roundings): below 2^62 the
         // clamp at 2^63 cannot act.
@@ -435,7 +465,8 @@ private:
     Distribution2D dist_;
     mutable std::once_flag gridOnce_;
     mutable std::vector<GridNode> nodes_;  // the nodes some texel uses
-    mutable std::vector<TexelShape> texelShapes_;  // per texel, as rgb_
+    mutable std::vector<EnvmapTexelShape> texelShapes_;  // per texel, as rgb_
+    mutable EnvmapNodeBlocks blocks_;  // per 2×2 texel block, its merged node list (buildGrid)
     mutable std::atomic<bool> gridBuilt_{false};
     mutable bool clampFree_ = false;  // no node's polynomial reaches the sigmoid's clamp (buildGrid)
     mutable float d65Factor_ = 0;  // the corners' common D65 normalisation (RGBSpectrum::d65Factor)
