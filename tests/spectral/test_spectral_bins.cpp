@@ -74,3 +74,15 @@ TEST(SpectralBins, FromCentresGivesEqualBinsBackAndRejectsBadLists) {
     EXPECT_THROW(SpectralBins::fromCentres({550.0}), Error);
     EXPECT_THROW(SpectralBins::fromCentres({550.0, 540.0}), Error);
 }
+
+TEST(SpectralBins, WavelengthsFarOutsideTheTablesGiveTheSameWeightsAtOnce) {
+    // A spectral image from a file may name any wavelengths: 1e20 nm once made the CMF integral
+    // step through [500, 5e19] nm one nanometre at a time (found by fuzz_image). Beyond the tables
+    // the CMFs are 0, so its bins weigh exactly what bins ending at 1e6 nm do.
+    const SpectralBins huge = SpectralBins::fromCentres({400.0, 1e20}), wide = SpectralBins::fromCentres({400.0, 1e6});
+    ASSERT_EQ(huge.count(), wide.count());
+    EXPECT_EQ(huge.xyzWeight(0), wide.xyzWeight(0));
+    EXPECT_GT(huge.xyzWeight(0).y, 0.99);  // the first bin holds the whole visible range: Y ≈ 1
+    const SpectralBins low = SpectralBins::fromCentres({-1e20, 500.0, 600.0});
+    EXPECT_EQ(low.xyzWeight(1), SpectralBins::fromCentres({-1e6, 500.0, 600.0}).xyzWeight(1));
+}
