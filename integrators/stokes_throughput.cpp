@@ -3,7 +3,7 @@
 #include <limits>
 #include <new>
 
-#include "spectral/lanes.h"
+#include "spectral/spectrum_lanes.h"
 #include "spectral/stokes_basis.h"
 
 namespace iris {
@@ -14,8 +14,8 @@ namespace {
 
 constexpr int kGroup = SampledSpectrum::kLanes;  // lanes per Float4
 
-Float4 lanesAt(const SampledSpectrum& s, int l) { return lanes::load(s.lanes() + l); }
-void setLanes(SampledSpectrum& s, int l, Float4 v) { lanes::store(s.lanes() + l, v); }
+using lanes::loadGroup;
+using lanes::storeGroup;
 
 }  // namespace
 
@@ -33,9 +33,9 @@ void StokesThroughput::changeBasis(const vec3& forward, const vec3& next) {
     const Float4 c = lanes::broadcast(R.c2), s = lanes::broadcast(R.s2);
     for (int k = 0; k < rows_; ++k)  // four lanes at a time: the spectrum operations' float products, no temporaries
         for (int l = 0; l < padded; l += kGroup) {
-            const Float4 a = lanesAt(r_[k][1], l), b = lanesAt(r_[k][2], l);
-            setLanes(r_[k][1], l, a * c - b * s);
-            setLanes(r_[k][2], l, a * s + b * c);
+            const Float4 a = loadGroup(r_[k][1], l), b = loadGroup(r_[k][2], l);
+            storeGroup(r_[k][1], l, a * c - b * s);
+            storeGroup(r_[k][2], l, a * s + b * c);
         }
 }
 
@@ -46,18 +46,18 @@ void StokesThroughput::apply(const MuellerSpectrum& M, const vec3& inputBasis) {
         for (int k = 0; k < rows_; ++k) {
             r_[k][0] *= M(0, 0);
             for (int j = 1; j < 4; ++j)
-                for (int l = 0; l < padded; l += kGroup) setLanes(r_[k][j], l, Float4{});
+                for (int l = 0; l < padded; l += kGroup) storeGroup(r_[k][j], l, Float4{});
         }
         return;
     }
     // Row times matrix four lanes at a time, summed over i = 0..3 in order (the spectrum operations' values).
     for (int k = 0; k < rows_; ++k)
         for (int l = 0; l < padded; l += kGroup) {
-            const Float4 x[4] = {lanesAt(r_[k][0], l), lanesAt(r_[k][1], l), lanesAt(r_[k][2], l), lanesAt(r_[k][3], l)};
+            const Float4 x[4] = {loadGroup(r_[k][0], l), loadGroup(r_[k][1], l), loadGroup(r_[k][2], l), loadGroup(r_[k][3], l)};
             for (int j = 0; j < 4; ++j) {
-                Float4 v = x[0] * lanesAt(M(0, j), l);
-                for (int i = 1; i < 4; ++i) v += x[i] * lanesAt(M(i, j), l);
-                setLanes(r_[k][j], l, v);
+                Float4 v = x[0] * loadGroup(M(0, j), l);
+                for (int i = 1; i < 4; ++i) v += x[i] * loadGroup(M(i, j), l);
+                storeGroup(r_[k][j], l, v);
             }
         }
 }
@@ -93,9 +93,9 @@ bool StokesThroughput::hasNonFinite() const {
     const Float4 inf = lanes::broadcast(std::numeric_limits<float>::infinity());
     lanes::Int4 bad{};
     for (int l = 0; l < r_[0][0].padded(); l += kGroup) {
-        const lanes::Int4 inRange = lanes::Int4{0, 1, 2, 3} + l < lanes::broadcast(int32_t(n));
+        const lanes::Int4 inRange = lanes::entryLanes(l, n);
         for (int k = 0; k < rows_; ++k)
-            for (int j = 0; j < 4; ++j) bad |= inRange & ~(lanes::abs(lanesAt(r_[k][j], l)) < inf);
+            for (int j = 0; j < 4; ++j) bad |= inRange & ~(lanes::abs(loadGroup(r_[k][j], l)) < inf);
     }
     return lanes::bits(bad) != 0;
 }

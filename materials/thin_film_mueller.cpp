@@ -1,7 +1,7 @@
 #include "materials/thin_film_mueller.h"
 
 #include "materials/mueller_frames.h"
-#include "spectral/lanes.h"
+#include "spectral/spectrum_lanes.h"
 
 // Double4 values pass only between always-inline lane functions (spectral/lanes.h): GCC's note on
 // the ABI of 32-byte vectors without AVX concerns calls that never happen.
@@ -14,12 +14,9 @@ namespace {
 using lanes::Double4;
 using lanes::Float4;
 
-/// Lanes l..l+3 of an entry (four at a time: no scalar stores that vector loads read back).
-void setLanes(SampledSpectrum& s, int l, Float4 v) { lanes::store(s.lanes() + l, v); }
+using lanes::storeGroup;  // four lanes at a time: no scalar stores that vector loads read back
 /// v where lane l + i < n, 0 in the padding lanes (the terms there are unspecified).
-Float4 inEntries(Float4 v, int l, int n) {
-    return lanes::select<Float4>(lanes::Int4{0, 1, 2, 3} + l < lanes::broadcast(int32_t(n)), v, Float4{});
-}
+Float4 inEntries(Float4 v, int l, int n) { return lanes::select<Float4>(lanes::entryLanes(l, n), v, Float4{}); }
 
 /// The interface layout [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, −D], [0, 0, D, C]] per wavelength
 /// from each entry's powers P_s, P_p and cross term C + iD (spectral/thin_film_polarization.h;
@@ -30,10 +27,10 @@ MuellerSpectrum layout(int n, const double* ps, const double* pp, const double* 
     const Double4 half = lanes::broadcast(0.5);
     for (int l = 0; l < n; l += SampledSpectrum::kLanes) {
         const Double4 s = lanes::load(ps + l), p = lanes::load(pp + l);
-        setLanes(A, l, inEntries(lanes::toFloat(half * (s + p)), l, n));
-        setLanes(B, l, inEntries(lanes::toFloat(half * (s - p)), l, n));
-        setLanes(C, l, inEntries(lanes::toFloat(lanes::load(re + l)), l, n));
-        setLanes(D, l, inEntries(lanes::toFloat(lanes::load(im + l)), l, n));
+        storeGroup(A, l, inEntries(lanes::toFloat(half * (s + p)), l, n));
+        storeGroup(B, l, inEntries(lanes::toFloat(half * (s - p)), l, n));
+        storeGroup(C, l, inEntries(lanes::toFloat(lanes::load(re + l)), l, n));
+        storeGroup(D, l, inEntries(lanes::toFloat(lanes::load(im + l)), l, n));
     }
     return mueller::interfaceMueller(A, B, C, D);
 }
@@ -71,11 +68,11 @@ MuellerSpectrum coatingDiffuseMueller(const ThinFilmCoating& c, const SampledSpe
         const Double4 tsi = lanes::load(pin.Ts + l), tpi = lanes::load(pin.Tp + l);
         const Double4 tso = lanes::load(pout.Ts + l), tpo = lanes::load(pout.Tp + l);
         const Double4 ai = half * (tsi + tpi), bi = half * (tsi - tpi), ao = half * (tso + tpo), bo = half * (tso - tpo);
-        const Double4 b = lanes::toDouble(lanes::load(base.lanes() + l));
-        setLanes(M(0, 0), l, inEntries(lanes::toFloat(b * ao * ai), l, n));
-        setLanes(M(0, 1), l, inEntries(lanes::toFloat(b * ao * bi), l, n));
-        setLanes(M(1, 0), l, inEntries(lanes::toFloat(b * bo * ai), l, n));
-        setLanes(M(1, 1), l, inEntries(lanes::toFloat(b * bo * bi), l, n));
+        const Double4 b = lanes::toDouble(lanes::loadGroup(base, l));
+        storeGroup(M(0, 0), l, inEntries(lanes::toFloat(b * ao * ai), l, n));
+        storeGroup(M(0, 1), l, inEntries(lanes::toFloat(b * ao * bi), l, n));
+        storeGroup(M(1, 0), l, inEntries(lanes::toFloat(b * bo * ai), l, n));
+        storeGroup(M(1, 1), l, inEntries(lanes::toFloat(b * bo * bi), l, n));
     }
     return fromSAxisBases(M, vec3(0, 0, 1), wi, wo);
 }

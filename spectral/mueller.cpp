@@ -1,10 +1,12 @@
 #include "spectral/mueller.h"
 
-#include "spectral/lanes.h"
+#include "spectral/spectrum_lanes.h"
 
 namespace iris::mueller {
 
 using lanes::Float4;
+using lanes::loadGroup;
+using lanes::storeGroup;
 
 Mueller4f multiply(const Mueller4f& a, const Mueller4f& b) {
     Mueller4f r;
@@ -40,7 +42,7 @@ MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& 
     for (int l = 0; l < SampledSpectrum::paddedSize(m.size()); l += SampledSpectrum::kLanes) {
         Float4 x[4][4];
         for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) x[i][j] = lanes::load(m(i, j).lanes() + l);
+            for (int j = 0; j < 4; ++j) x[i][j] = loadGroup(m(i, j), l);
         for (int j = 0; j < 4; ++j) {  // R_out · M: rows 1 and 2 (rotator rows [c, s], [−s, c]; Collett ch. 5 eq. 43)
             const Float4 a = x[1][j], b = x[2][j];
             x[1][j] = a * oc + b * os;
@@ -52,7 +54,7 @@ MuellerSpectrum rotateBasesDense(const MuellerSpectrum& m, const BasisRotation& 
             x[i][2] = b * ic - a * is;
         }
         for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) lanes::store(r(i, j).lanes() + l, x[i][j]);
+            for (int j = 0; j < 4; ++j) storeGroup(r(i, j), l, x[i][j]);
     }
     return r;
 }
@@ -66,13 +68,13 @@ MuellerSpectrum rotatedInterface(const MuellerSpectrum& m, const BasisRotation& 
     MuellerSpectrum r(m.size());
     const Float4 oc = lanes::broadcast(out.c2), os = lanes::broadcast(out.s2);
     const Float4 ic = lanes::broadcast(in.c2), is = lanes::broadcast(in.s2);
-    auto put = [&r](int i, int j, int l, Float4 v) { lanes::store(r(i, j).lanes() + l, v); };
+    auto put = [&r](int i, int j, int l, Float4 v) { storeGroup(r(i, j), l, v); };
     for (int l = 0; l < SampledSpectrum::paddedSize(m.size()); l += SampledSpectrum::kLanes) {
-        const Float4 A = lanes::load(m(0, 0).lanes() + l), B = lanes::load(m(0, 1).lanes() + l);
-        const Float4 C = lanes::load(m(2, 2).lanes() + l), mD = lanes::load(m(2, 3).lanes() + l);
-        const Float4 D = lanes::load(m(3, 2).lanes() + l);
-        put(0, 0, l, A), put(0, 3, l, lanes::load(m(0, 3).lanes() + l));
-        put(3, 0, l, lanes::load(m(3, 0).lanes() + l)), put(3, 3, l, lanes::load(m(3, 3).lanes() + l));
+        const Float4 A = loadGroup(m(0, 0), l), B = loadGroup(m(0, 1), l);
+        const Float4 C = loadGroup(m(2, 2), l), mD = loadGroup(m(2, 3), l);
+        const Float4 D = loadGroup(m(3, 2), l);
+        put(0, 0, l, A), put(0, 3, l, loadGroup(m(0, 3), l));
+        put(3, 0, l, loadGroup(m(3, 0), l)), put(3, 3, l, loadGroup(m(3, 3), l));
         // R_out · M: rows 1 and 2 become (a c + b s, b c − a s) of their old values (Collett ch. 5 eq. 43).
         const Float4 a1 = A * oc, c1 = C * os, a2 = -(A * os), c2 = C * oc;
         put(1, 0, l, B * oc), put(2, 0, l, -(B * os)), put(1, 3, l, mD * os), put(2, 3, l, mD * oc);

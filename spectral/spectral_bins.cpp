@@ -13,10 +13,10 @@ namespace {
 
 /// ∫_a^b of the piecewise-linear interpolant of the 1 nm CMF table: the trapezoid rule between the
 /// table nodes inside [a, b] and at the two cut points is exact for a piecewise-linear function.
-/// Outside [kLambdaMin − 1, kLambdaMax + 1] nm (the 1 nm table's range, spectral/wavelengths.h) the interpolant is 0 on whole unit steps, which add
-/// nothing, so [a, b] is clipped there: the same sum bit for bit, and at most ~470 steps for any
-/// bounds (the wavelengths of a spectral image read from a file can be anything: 1e20 nm made
-/// this loop run for ever, found by fuzz_image).
+/// Outside [kLambdaMin − 1, kLambdaMax + 1] nm (the table's range, spectral/wavelengths.h) the
+/// interpolant is 0 on whole unit steps, which add nothing, so [a, b] is clipped there: the same
+/// sum bit for bit, and at most ~470 steps for any bounds (the wavelengths of a spectral image read
+/// from a file can be anything: 1e20 nm made this loop run for ever, found by fuzz_image).
 dvec3 integrateXyzBar(double a, double b) {
     a = std::max(a, double(kLambdaMin) - 1.0);
     b = std::min(b, double(kLambdaMax) + 1.0);
