@@ -80,6 +80,39 @@ TEST(SampleSequences, SobolMatchesTheKnownFirstPoints) {
     }
 }
 
+namespace {
+
+/// sobol2D as core/sample_sequences.h defines it, composed plainly: the shuffled index
+/// nestedUniformScramble(i, s0), each dimension's sobolBits Owen-scrambled with its own seed (the
+/// seeds s_k = SplitMix64 of the request's seed + k·golden ratio); `swap` puts dimension 0's bits
+/// in both coordinates (a wrong definition that the fast path must not match).
+vec2 plainSobol2D(uint64_t i, uint64_t seed, bool wrong = false) {
+    const auto part = [&](uint64_t k) { return uint32_t(mix64(seed + k * 0x9e3779b97f4a7c15ull)); };
+    const uint32_t index = nestedUniformScramble(uint32_t(i), part(0));
+    const auto unit = [](uint32_t b) { return std::min(kOneMinusEpsilon, float(b) * 0x1p-32f); };
+    return vec2(unit(nestedUniformScramble(sobolBits(index, 0), part(1))),
+                unit(nestedUniformScramble(sobolBits(index, wrong ? 0 : 1), part(2))));
+}
+
+}  // namespace
+
+TEST(SampleSequences, FastSobolEqualsThePlainComposition) {
+    // sobol1D/sobol2D cancel the bit reversals and read dimension 1 from byte tables; the points
+    // must be the plain definition's, bit for bit, for small and large indices and any seed.
+    Pcg32 rng(5, 11);
+    int wrongAgrees = 0;
+    for (int n = 0; n < 20000; ++n) {
+        const uint64_t i = n < 1000 ? uint64_t(n) : uint64_t(rng.nextU32()) | (n % 3 == 0 ? uint64_t(rng.nextU32()) << 32 : 0);
+        const uint64_t seed = (uint64_t(rng.nextU32()) << 32) | rng.nextU32();
+        const vec2 fast = sobol2D(i, seed), plain = plainSobol2D(i, seed);
+        ASSERT_EQ(fast.x, plain.x) << "index " << i << " seed " << seed;
+        ASSERT_EQ(fast.y, plain.y) << "index " << i << " seed " << seed;
+        ASSERT_EQ(sobol1D(i, seed), plain.x) << "index " << i << " seed " << seed;
+        wrongAgrees += sobol2D(i, seed).y == plainSobol2D(i, seed, true).y;
+    }
+    EXPECT_LT(wrongAgrees, 10);  // the control: another dimension's bits are told apart
+}
+
 TEST(SampleSequences, PermutationIsABijectionThatDependsOnTheSeed) {
     for (uint32_t n : {1u, 2u, 3u, 7u, 16u, 100u, 1000u, 4097u}) {
         for (uint64_t seed : {0ull, 1ull, 0x123456789abcdefull}) {
