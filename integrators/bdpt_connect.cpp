@@ -52,11 +52,10 @@ std::optional<BDPTConnection> lightVertexToCamera(const Scene& scene, const BDPT
 std::optional<BDPTConnection> cameraVertexToLightPoint(const Scene& scene, const BDPTVertex* camera, int t, const SampledWavelengths& wl,
                                                        Sampler& sampler, bool strict, PathStats& stats) {
     const BDPTVertex& pt = camera[t - 1];
-    const float uLight = sampler.get1D();
     const vec2 uL = sampler.get2D();
     if (!pt.connectible() || pt.type != BDPTVertexType::Surface) return std::nullopt;
     const std::optional<VertexLightSample> s =
-        sampleLightAtSurface(scene, pt.p, pt.ng, pt.shading, *pt.bsdf, pt.shading.toLocal(pt.si.wo), uLight, uL, wl, strict);
+        sampleLightAtSurface(scene, pt.p, pt.ng, pt.shading, *pt.bsdf, pt.shading.toLocal(pt.si.wo), uL, wl, strict);
     if (!s) return std::nullopt;
     ++stats.rays;
     const LightSample& ls = s->ls;

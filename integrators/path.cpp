@@ -54,12 +54,11 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
         }
         const vec3 wo = frame.toLocal(si.wo);
 
-        // Next-event estimation (a path of depth+1 segments). Both numbers are drawn whether or not
-        // the BSDF can use them, so that the sample stream stays aligned.
+        // Next-event estimation (a path of depth+1 segments). Its 2D sample (the light and the point
+        // on it) is drawn whether or not the BSDF can use it, so that the sample stream stays aligned.
         if (haveLights) {
-            const float uLight = sampler.get1D();
             const vec2 uL = sampler.get2D();
-            if (bsdf->hasNonSpecular()) L += directLight(scene, si, frame, *bsdf, wo, uLight, uL, wl, beta, stats);
+            if (bsdf->hasNonSpecular()) L += directLight(scene, si, frame, *bsdf, wo, uL, wl, beta, stats);
         }
 
         // Sample the BSDF to continue the path.
@@ -94,12 +93,12 @@ SampledSpectrum PathIntegrator::Li(const Scene& scene, const Ray& cameraRay, Sam
 }
 
 SampledSpectrum PathIntegrator::directLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf,
-                                            const vec3& wo, float uLight, const vec2& uL, const SampledWavelengths& wl,
+                                            const vec3& wo, const vec2& uL, const SampledWavelengths& wl,
                                             const SampledSpectrum& beta, PathStats& stats) const {
     // The radiance is looked up last, for an unoccluded sample the BSDF does not make black (the
     // same contributions as looking it up first: no sample is drawn in between).
     std::optional<VertexLightSample> s =
-        sampleLightAtSurface(scene, si.p, si.ng, frame, bsdf, wo, uLight, uL, wl, params_.strictNormals, RadianceLookup::Deferred);
+        sampleLightAtSurface(scene, si.p, si.ng, frame, bsdf, wo, uL, wl, params_.strictNormals, RadianceLookup::Deferred);
     if (!s) return SampledSpectrum(wl.size());
     ++stats.rays;
     const LightSample& ls = s->ls;

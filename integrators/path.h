@@ -37,7 +37,7 @@ public:
 private:
     /// Next-event estimation at si with MIS (power heuristic): one light sample, its occlusion test.
     SampledSpectrum directLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf,
-                                const vec3& wo, float uLight, const vec2& uL, const SampledWavelengths& wl,
+                                const vec3& wo, const vec2& uL, const SampledWavelengths& wl,
                                 const SampledSpectrum& beta, PathStats& stats) const;
 
     PathParams params_;

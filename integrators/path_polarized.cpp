@@ -18,9 +18,9 @@ namespace {
 
 /// Next-event estimation at si as in PathIntegrator::directLight, with the BSDF's Mueller matrix.
 void directLightStokes(const Scene& scene, const SurfaceInteraction& si, const Frame& frame, const BSDF& bsdf, const vec3& wo,
-                       float uLight, const vec2& uL, const SampledWavelengths& wl, const StokesThroughput& T,
+                       const vec2& uL, const SampledWavelengths& wl, const StokesThroughput& T,
                        bool strictNormals, PathStats& stats, StokesVector& est) {
-    std::optional<VertexLightSample> s = sampleChosenLight(scene, si.p, uLight, uL, wl, RadianceLookup::Deferred);
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, si.p, uL, wl, RadianceLookup::Deferred);
     if (!s) return;
     const vec3 wi = frame.toLocal(s->ls.wi);
     if (strictNormals && !sidesAgree(s->ls.wi, si.ng, wi.z)) return;
@@ -81,10 +81,9 @@ void PathIntegrator::LiStokes(const Scene& scene, const Ray& cameraRay, SampledW
         T.changeBasis(frame.toWorld(wo), frame.toWorld(stokesBasis(wo)));
 
         if (haveLights) {
-            const float uLight = sampler.get1D();
             const vec2 uL = sampler.get2D();
             if (bsdf->hasNonSpecular())
-                directLightStokes(scene, si, frame, *bsdf, wo, uLight, uL, wl, T, params_.strictNormals, stats, est.S);
+                directLightStokes(scene, si, frame, *bsdf, wo, uL, wl, T, params_.strictNormals, stats, est.S);
         }
 
         const float uc = sampler.get1D();

@@ -7,8 +7,10 @@ namespace iris {
 LightChoice chooseLight(const Scene& scene, float u) {
     const auto& lights = scene.lights();
     if (lights.empty()) return {};
-    const int i = std::min(int(u * lights.size()), int(lights.size()) - 1);
-    return {lights[size_t(i)].get(), lightChoicePmf(scene)};
+    const float n = float(lights.size());
+    const int i = std::min(int(u * n), int(lights.size()) - 1);
+    const float reused = std::min(kOneMinusEpsilon, std::max(0.0f, u * n - float(i)));
+    return {lights[size_t(i)].get(), lightChoicePmf(scene), reused};
 }
 
 float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from, const vec3& d, const SurfaceInteraction* hit) {
@@ -16,12 +18,13 @@ float lightSamplingPdf(const Scene& scene, const Light& light, const vec3& from,
     return pmf * light.pdfLi(from, d, hit);
 }
 
-std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
-                                                   const SampledWavelengths& wl, RadianceLookup lookup) {
-    const LightChoice choice = chooseLight(scene, uLight);
+std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, const vec2& uL, const SampledWavelengths& wl,
+                                                   RadianceLookup lookup) {
+    const LightChoice choice = chooseLight(scene, uL.x);
     if (!choice.light) return std::nullopt;
+    const vec2 u(choice.uReused, uL.y);
     const std::optional<LightSample> ls =
-        lookup == RadianceLookup::Deferred ? choice.light->sampleLiDeferred(p, uL, wl) : choice.light->sampleLi(p, uL, wl);
+        lookup == RadianceLookup::Deferred ? choice.light->sampleLiDeferred(p, u, wl) : choice.light->sampleLi(p, u, wl);
     if (!ls || !(ls->pdf > 0) || (!ls->radianceDeferred && ls->L.isBlack())) return std::nullopt;
     VertexLightSample s;
     s.light = choice.light;
@@ -39,9 +42,9 @@ bool resolveRadiance(VertexLightSample& s, const SampledWavelengths& wl) {
 }
 
 std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
-                                                      const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
+                                                      const BSDF& bsdf, const vec3& wo, const vec2& uL,
                                                       const SampledWavelengths& wl, bool strictNormals, RadianceLookup lookup) {
-    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl, lookup);
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uL, wl, lookup);
     if (!s) return std::nullopt;
     const vec3 wi = frame.toLocal(s->ls.wi);
     if (strictNormals && !sidesAgree(s->ls.wi, ng, wi.z)) return std::nullopt;
@@ -53,8 +56,8 @@ std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const 
 }
 
 std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const vec3& p, const PhaseFunction& phase, const vec3& wo,
-                                                     float uLight, const vec2& uL, const SampledWavelengths& wl) {
-    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uLight, uL, wl);
+                                                     const vec2& uL, const SampledWavelengths& wl) {
+    std::optional<VertexLightSample> s = sampleChosenLight(scene, p, uL, wl);
     if (!s) return std::nullopt;
     s->scatterPdf = phase.pdf(p, wo, s->ls.wi);
     s->f = SampledSpectrum(wl.size(), phase.eval(p, wo, s->ls.wi));

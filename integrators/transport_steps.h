@@ -1,6 +1,7 @@
 // The steps every path-space integrator takes, written once (pbrt-v4 §13.4: SampleLd, the emission
 // MIS of PathIntegrator::Li, Russian roulette; Mitsuba 3 src/integrators/path.cpp and volpath.cpp):
-//   - choosing the light for next-event estimation (uniformly, Mitsuba 3 Scene::sample_emitter),
+//   - choosing the light for next-event estimation (uniformly, Mitsuba 3 Scene::sample_emitter,
+//     with the sample reused for the point on the light, as both Mitsubas do),
 //   - sampling it from a surface point with the BSDF evaluated towards it (its radiance, at the
 //     caller's choice, looked up only once the sample is known to contribute),
 //   - the light-sampling pdf of a direction that reached a light (for MIS at an emitter hit),
@@ -24,10 +25,13 @@ namespace iris {
 struct LightChoice {
     const Light* light = nullptr;
     float pmf = 0.0f;
+    float uReused = 0.0f;  // u stretched back to [0, 1) within the chosen light's interval
 };
 
 /// One of the scene's lights, chosen uniformly with u ∈ [0, 1) (Mitsuba 3 Scene::sample_emitter);
-/// light is nullptr when the scene has none.
+/// light is nullptr when the scene has none. uReused = u·n − i for light i of n (Mitsuba 0.6
+/// DiscreteDistribution::sampleReuse, Mitsuba 3 Scene::sample_emitter's reused sample): uniform
+/// in [0, 1) and independent of the choice, with u·n's fraction bits (⌊log2 n⌋ fewer than u's).
 LightChoice chooseLight(const Scene& scene, float u);
 
 /// The probability with which chooseLight picks any one light: 1 / (number of lights), 0 without
@@ -64,27 +68,31 @@ struct VertexLightSample {
 enum class RadianceLookup { AtSample, Deferred };
 
 /// chooseLight and the chosen light's sample from point p, its scattering terms (f, scatterPdf) not
-/// yet set; nullopt when there is nothing to light with.
-std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, float uLight, const vec2& uL,
-                                                   const SampledWavelengths& wl, RadianceLookup lookup = RadianceLookup::AtSample);
+/// yet set; nullopt when there is nothing to light with. One 2D sample does both, as in both
+/// Mitsubas (0.6 Scene::sampleEmitterDirect, 3 Scene::sample_emitter_direction): uL.x chooses the
+/// light and, stretched back to [0, 1), is reused with uL.y for the point on it, so the points a
+/// stratified or low-discrepancy 2D set gives one light are again stratified (a separate 1D choice
+/// would hand each light a random subset of them).
+std::optional<VertexLightSample> sampleChosenLight(const Scene& scene, const vec3& p, const vec2& uL, const SampledWavelengths& wl,
+                                                   RadianceLookup lookup = RadianceLookup::AtSample);
 
 /// The sample's radiance looked up if its light deferred it (RadianceLookup::Deferred); false
 /// when it is black (the sample contributes nothing).
 bool resolveRadiance(VertexLightSample& s, const SampledWavelengths& wl);
 
 /// Next-event estimation's sample at surface point p (geometric normal ng) with shading frame
-/// `frame`, BSDF `bsdf` and wo (local), drawing its light with uLight and its point with uL:
+/// `frame`, BSDF `bsdf` and wo (local), drawing its light and its point with uL (sampleChosenLight):
 /// nullopt when the light gives nothing there, the BSDF is black towards it, or (strictNormals)
 /// wi leaves on the other side of the geometric surface than of the shading one.
 std::optional<VertexLightSample> sampleLightAtSurface(const Scene& scene, const vec3& p, const vec3& ng, const Frame& frame,
-                                                      const BSDF& bsdf, const vec3& wo, float uLight, const vec2& uL,
+                                                      const BSDF& bsdf, const vec3& wo, const vec2& uL,
                                                       const SampledWavelengths& wl, bool strictNormals,
                                                       RadianceLookup lookup = RadianceLookup::AtSample);
 
 /// The same at point p in a medium with phase function `phase` and wo (world, towards the previous
 /// vertex).
 std::optional<VertexLightSample> sampleLightInMedium(const Scene& scene, const vec3& p, const PhaseFunction& phase, const vec3& wo,
-                                                     float uLight, const vec2& uL, const SampledWavelengths& wl);
+                                                     const vec2& uL, const SampledWavelengths& wl);
 
 /// Calls emitted(light, Le) for the emission a ray with direction `d` finds: the area light of its
 /// hit, or every infinite light when it escaped (hit = nullptr).

@@ -365,11 +365,10 @@ bool VolPathIntegrator::scatterInMedium(const Scene& scene, const vec3& p, Ray& 
     const PhaseFunction& phase = ps.medium->phase();
     const vec3 wo = -ray.d;
     if constexpr (P) ps.beta.changeBasis(wo, stokesBasis(wo));  // the phase matrices' output basis
-    if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
-        const float uLight = sampler.get1D();
+    if (!scene.lights().empty()) {  // drawn either way: the sample stream stays aligned
         const vec2 uL = sampler.get2D();
         if (ps.medium->sampleEmitters())
-            if (const auto s = sampleLightInMedium(scene, p, phase, wo, uLight, uL, wl)) {
+            if (const auto s = sampleLightInMedium(scene, p, phase, wo, uL, wl)) {
                 if constexpr (P) {
                     const VertexMueller v = phaseMueller(phase, p, wo, s->ls.wi, wl.size());
                     addLight(scene, p, nullptr, *s, &v, h, ps, wl, rng, arena, stats);
@@ -422,11 +421,10 @@ bool VolPathIntegrator::scatterAtSurface(const Scene& scene, const SurfaceIntera
         return true;
     }
     if constexpr (P) ps.beta.changeBasis(frame.toWorld(wo), frame.toWorld(stokesBasis(wo)));  // the BSDF's output basis
-    if (!scene.lights().empty()) {  // both numbers are drawn either way: the sample stream stays aligned
-        const float uLight = sampler.get1D();
+    if (!scene.lights().empty()) {  // drawn either way: the sample stream stays aligned
         const vec2 uL = sampler.get2D();
         if (bsdf->hasNonSpecular() && ps.depth + 1 < maxDepth_)
-            if (const auto s = sampleLightAtSurface(scene, si.p, si.ng, frame, *bsdf, wo, uLight, uL, wl, params_.strictNormals)) {
+            if (const auto s = sampleLightAtSurface(scene, si.p, si.ng, frame, *bsdf, wo, uL, wl, params_.strictNormals)) {
                 if constexpr (P) {
                     const VertexMueller v = surfaceMueller(*bsdf, frame, wo, frame.toLocal(s->ls.wi));
                     addLight(scene, si.p, &si, *s, &v, h, ps, wl, rng, arena, stats);

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <map>
+#include <set>
 
 #include "render/film.h"
 #include "core/io/image.h"
@@ -530,4 +532,33 @@ TEST(Lights, ResolveRadianceLooksUpDeferredSamplesAndRejectsBlackOnes) {
         EXPECT_TRUE(sameBits(c.ls.L, before, wl.size()));
     }
     EXPECT_GT(lit, 100);
+}
+
+TEST(Lights, LightChoiceReusesItsSampleSoEachLightKeepsItsStrata) {
+    // chooseLight (integrators/transport_steps.h) picks light i of n with u ∈ [i/n, (i+1)/n) and
+    // hands on u·n − i, as both Mitsubas do: n·m stratified values of u give every light m values
+    // that again fall one in each of m strata. The raw u (a choice that does not stretch its
+    // sample) is the control: its values for one light crowd into 1/n of the strata.
+    SceneDescription d = floorScene(0.5f);
+    for (int i = 0; i < 3; ++i) d.shapes.push_back(sphereLight(vec3(float(i), 0, 3), 0.5f, 1.0f));
+    const Scene scene(std::move(d));
+    ASSERT_EQ(scene.lights().size(), 3u);
+    const int n = 3, m = 64;
+    std::map<const Light*, std::set<int>> reusedStrata, rawStrata;
+    for (int k = 0; k < n * m; ++k) {
+        const float u = (float(k) + 0.5f) / float(n * m);
+        const LightChoice c = chooseLight(scene, u);
+        ASSERT_NE(c.light, nullptr);
+        EXPECT_FLOAT_EQ(c.pmf, 1.0f / 3.0f);
+        ASSERT_GE(c.uReused, 0.0f);
+        ASSERT_LT(c.uReused, 1.0f);
+        EXPECT_EQ(c.light, scene.lights()[size_t(k / m)].get());
+        reusedStrata[c.light].insert(int(c.uReused * m));
+        rawStrata[c.light].insert(int(u * m));
+    }
+    for (const auto& [light, strata] : reusedStrata) EXPECT_EQ(strata.size(), size_t(m));
+    for (const auto& [light, strata] : rawStrata) EXPECT_LE(strata.size(), size_t(m / n + 1));
+    // The end of the range stays inside it.
+    EXPECT_LT(chooseLight(scene, kOneMinusEpsilon).uReused, 1.0f);
+    EXPECT_EQ(chooseLight(scene, kOneMinusEpsilon).light, scene.lights()[2].get());
 }
