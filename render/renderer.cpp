@@ -189,7 +189,10 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         Arena arena;
         PathStats stats;
         uint64_t invalid = 0;
+        int worker = -1;                  // the timeline's worker number
+        std::vector<TileTiming> timings;  // this worker's tiles (RenderOptions::timeline)
     };
+    std::atomic<int> workers{0};
     tbb::enumerable_thread_specific<ThreadState> states;
 
     // Resume: the film already holds complete passes (checkpoints are written between passes).
@@ -225,14 +228,17 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         }
         if (stopRequested()) break;
         const auto passStart = Clock::now();
+        if (opt_.timeline) opt_.timeline->passes.push_back({secondsSince(start), 0.0});
         tilesDone = 0;
         ForkJoin forkJoin;  // the loop's order, for ThreadSanitizer (core/tsan_fork_join.h)
         forkJoin.fork();
         tbb::parallel_for(tbb::blocked_range<int>(0, nTiles, 1), [&](const tbb::blocked_range<int>& range) {
             const ForkJoin::Body body(forkJoin);
             ThreadState& ts = states.local();
+            if (opt_.timeline && ts.worker < 0) ts.worker = workers++;
             for (int tile = range.begin(); tile != range.end(); ++tile) {
                 if (stopRequested()) return;
+                const double tileStart = opt_.timeline ? secondsSince(start) : 0.0;
                 const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
                 for (int y = y0; y < std::min(y0 + kTile, h); ++y)
                     for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
@@ -268,6 +274,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
                         if (spectral) valid ? spectral->addSample(x, y, fs.weight == 1.0f ? L : fs.weight * L, wl) : spectral->addZeroSample(x, y);
                         if (stokes) stokes->addSample(x, y, S, wl, fs.weight, valid);
                     }
+                if (opt_.timeline) ts.timings.push_back({s - int(firstSample), tile, ts.worker, tileStart, secondsSince(start)});
                 const int done = ++tilesDone;
                 if (opt_.onTileFinished) opt_.onTileFinished(++tilesFinished, nTiles);
                 if (opt_.progress || opt_.progressOut) {
@@ -281,6 +288,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         });
         forkJoin.join();
         passSeconds = std::chrono::duration<double>(Clock::now() - passStart).count();
+        if (opt_.timeline) opt_.timeline->passes.back().end = secondsSince(start);
         if (tilesDone.load() < nTiles) break;  // stopped mid-pass (a splatting pass is dropped)
         if (splats) splats->flushInto(film);
         if (checkpoints) {
@@ -312,6 +320,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
         rs.rays += ts.stats.rays;
         rs.paths += ts.stats.paths;
         rs.invalidSamples += ts.invalid;
+        if (opt_.timeline) opt_.timeline->tiles.insert(opt_.timeline->tiles.end(), ts.timings.begin(), ts.timings.end());
     }
     if (splats) rs.invalidSamples += splats->invalidSplats();
     rs.seconds = secondsSince(start);
@@ -322,6 +331,7 @@ RenderStats Renderer::render(Film& film, const std::atomic<bool>* cancel, Spectr
     rs.interrupted = !unlimitedSpp && rs.sppMin < uint32_t(target) && !rs.timeLimited;
     if (opt_.timeLimit > 0 && secondsSince(start) >= opt_.timeLimit) rs.timeLimited = true;
     if (rs.timeLimited && (!cancel || !cancel->load())) rs.interrupted = false;
+    if (opt_.timeline) opt_.timeline->end = secondsSince(start);
     return rs;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "render/film.h"
+#include "render/render_timeline.h"
 #include "render/spectral_film.h"
 #include "render/scene.h"
 
@@ -43,6 +44,8 @@ struct RenderOptions {
     // tiles finished in this render() call and the tiles per pass (a pass is finished when the
     // count reaches a multiple of it). Interruption tests use it to stop at an exact point.
     std::function<void(uint64_t tilesFinished, int tilesPerPass)> onTileFinished;
+    // If set, filled with when each pass and tile ran (render/render_timeline.h; the scaling model).
+    RenderTimeline* timeline = nullptr;
 };
 
 struct RenderStats {
