@@ -71,6 +71,7 @@ public:
         pattern_ = pattern;
         pixelSeed_ = mix64(seed ^ mix64(pixelIndex + 0x2545f4914f6cdd1dull));
         sampleIndex_ = sampleIndex;
+        reversedIndex_ = reverseBits32(uint32_t(sampleIndex));
     }
     explicit Sampler(uint64_t seed) : rng_(mix64(seed), mix64(seed ^ 0x5851f42d4c957f2dull)) {}
 
@@ -90,6 +91,7 @@ private:
     Pcg32 rng_;
     SamplePattern pattern_;
     uint64_t pixelSeed_ = 0, sampleIndex_ = 0;
+    uint32_t reversedIndex_ = 0;  // sobol's start: the sample index's bits reversed
     uint32_t dimension_ = 0;
 };
 

@@ -12,17 +12,14 @@ namespace iris {
 
 namespace {
 
-/// The 32 bits of x in reverse order (bit 0 becomes bit 31).
-uint32_t reverseBits32(uint32_t x) {
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-    return (x >> 16) | (x << 16);
-}
-
-/// A 32-bit seed for part `part` of a request (SplitMix64 of the request's seed).
-uint32_t partSeed(uint64_t dimensionSeed, uint64_t part) { return uint32_t(mix64(dimensionSeed + part * 0x9e3779b97f4a7c15ull)); }
+/// The three 32-bit seeds of a Sobol request: the index shuffle's and dimension 0's are the two
+/// halves of the request's seed (already a SplitMix64 output, Sampler::nextDimensionSeed),
+/// dimension 1's the low half of one more SplitMix64 step.
+struct SobolSeeds {
+    uint32_t shuffle, dim0;
+    explicit SobolSeeds(uint64_t dimensionSeed) : shuffle(uint32_t(dimensionSeed)), dim0(uint32_t(dimensionSeed >> 32)) {}
+};
+uint32_t sobolDim1Seed(uint64_t dimensionSeed) { return uint32_t(mix64(dimensionSeed)); }
 
 /// One round of an invertible hash of b-bit integers (`mask` = 2^b − 1): xor with a key, multiply by
 /// an odd constant and xorshift right, each a bijection modulo 2^b.
@@ -105,9 +102,10 @@ uint32_t scrambleReversed(uint32_t x, uint32_t seed) {
     return x;
 }
 
-/// The request's shuffled Sobol index: nestedUniformScramble(sampleIndex, seed).
-uint32_t shuffledIndex(uint64_t sampleIndex, uint32_t seed) {
-    return reverseBits32(scrambleReversed(reverseBits32(uint32_t(sampleIndex)), seed));
+/// The request's shuffled Sobol index nestedUniformScramble(sampleIndex, seed), from the sample
+/// index's bits reversed (which a sampler computes once for all its requests).
+uint32_t shuffledIndex(uint32_t reversedSampleIndex, uint32_t seed) {
+    return reverseBits32(scrambleReversed(reversedSampleIndex, seed));
 }
 
 /// The request's index within its pattern of n and the seed of its round ⌊index / n⌋.
@@ -182,26 +180,36 @@ vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensio
 // with the reversals cancelled: sobolBits(index, 0) is reverseBits32(index), so its scramble is
 // reverseBits32(scrambleReversed(index, ·)); dimension 1 is read reversed from byte tables. Same
 // bits as the plain composition (tests/core/test_sample_sequences.cpp), at a fraction of its cost.
+float sobol1DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed) {
+    const SobolSeeds seeds(dimensionSeed);
+    const uint32_t index = shuffledIndex(reversedSampleIndex, seeds.shuffle);
+    return unitFloat(reverseBits32(scrambleReversed(index, seeds.dim0)));
+}
+
+vec2 sobol2DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed) {
+    const SobolSeeds seeds(dimensionSeed);
+    const uint32_t index = shuffledIndex(reversedSampleIndex, seeds.shuffle);
+    return vec2(unitFloat(reverseBits32(scrambleReversed(index, seeds.dim0))),
+                unitFloat(reverseBits32(scrambleReversed(sobol1Reversed(index), sobolDim1Seed(dimensionSeed)))));
+}
+
 float sobol1D(uint64_t sampleIndex, uint64_t dimensionSeed) {
-    const uint32_t index = shuffledIndex(sampleIndex, partSeed(dimensionSeed, 0));
-    return unitFloat(reverseBits32(scrambleReversed(index, partSeed(dimensionSeed, 1))));
+    return sobol1DReversed(reverseBits32(uint32_t(sampleIndex)), dimensionSeed);
 }
 
 vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed) {
-    const uint32_t index = shuffledIndex(sampleIndex, partSeed(dimensionSeed, 0));
-    return vec2(unitFloat(reverseBits32(scrambleReversed(index, partSeed(dimensionSeed, 1)))),
-                unitFloat(reverseBits32(scrambleReversed(sobol1Reversed(index), partSeed(dimensionSeed, 2)))));
+    return sobol2DReversed(reverseBits32(uint32_t(sampleIndex)), dimensionSeed);
 }
 
 float Sampler::patterned1D() {
     const uint64_t d = nextDimensionSeed();
-    if (pattern_.sequence == SampleSequence::Sobol) return sobol1D(sampleIndex_, d);
+    if (pattern_.sequence == SampleSequence::Sobol) return sobol1DReversed(reversedIndex_, d);
     return stratified1D(sampleIndex_, pattern_.size, d, jitter());  // stratified and multijitter
 }
 
 vec2 Sampler::patterned2D() {
     const uint64_t d = nextDimensionSeed();
-    if (pattern_.sequence == SampleSequence::Sobol) return sobol2D(sampleIndex_, d);
+    if (pattern_.sequence == SampleSequence::Sobol) return sobol2DReversed(reversedIndex_, d);
     const float jx = jitter();
     const vec2 j(jx, jitter());
     return pattern_.sequence == SampleSequence::Multijitter ? multijitter2D(sampleIndex_, pattern_.size, d, j)

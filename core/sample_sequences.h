@@ -29,6 +29,15 @@ enum class SampleSequence { Independent, Stratified, Multijitter, Sobol };
 /// offset). For each i its image is uniform over the seeds.
 uint32_t permuteIndex(uint32_t i, uint32_t n, uint64_t seed);
 
+/// The 32 bits of x in reverse order (bit 0 becomes bit 31).
+constexpr uint32_t reverseBits32(uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
 /// Bits of the Sobol point of `index` in dimension 0 (van der Corput) or 1, as a 32-bit fraction.
 uint32_t sobolBits(uint32_t index, int dimension);
 
@@ -42,5 +51,9 @@ vec2 stratified2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimension
 vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensionSeed, vec2 jitter);
 float sobol1D(uint64_t sampleIndex, uint64_t dimensionSeed);
 vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed);
+/// The same points from reverseBits32(uint32_t(sampleIndex)), which a sampler computes once for
+/// all its requests (Sampler, core/rng.h).
+float sobol1DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed);
+vec2 sobol2DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed);
 
 }  // namespace iris

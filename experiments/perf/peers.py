@@ -333,6 +333,50 @@ def lowest_error_line(per: dict, budgets: list[float]) -> str:
     return line + "."
 
 
+def iris_against_peers(per: dict, budgets: list[float]) -> list[dict]:
+    """Issue 37's question at each budget: is iris's lowest relMSE (over its variants) below every
+    peer's? A renderer whose first run took longer than the budget has no image by then (a peer is
+    beaten, an iris variant left out); a budget beyond any renderer's longest run, or where no iris
+    variant has a value, is undecided."""
+    verdicts = []
+    for b in budgets:
+        iris, peers, beaten, unmeasured = {}, {}, [], []
+        for n, v in per.items():
+            e = relmse_at(v["rows"], b)
+            times = [r["seconds"] for r in v["rows"]]
+            if e is not None:
+                (iris if n.startswith("iris") else peers)[n] = e
+            elif times and b < min(times):
+                beaten.append(n)  # no image within the budget
+            else:
+                unmeasured.append(n)  # its longest run ended before the budget: it might do better
+        v = {"budget": b, "no_image_yet": beaten, "not_measured": unmeasured}
+        if iris:
+            v["iris"] = min(iris, key=iris.get)
+            v["iris_relmse"] = iris[v["iris"]]
+        if peers:
+            v["peer"] = min(peers, key=peers.get)
+            v["peer_relmse"] = peers[v["peer"]]
+        v["decided"] = bool(iris) and not unmeasured
+        v["iris_lowest"] = v["decided"] and (not peers or v["iris_relmse"] < v["peer_relmse"])
+        verdicts.append(v)
+    return verdicts
+
+
+def iris_against_peers_line(verdicts: list[dict]) -> str:
+    parts = []
+    for v in verdicts:
+        b = f"{v['budget']:g}s"
+        if not v["decided"]:
+            why = f"{', '.join(v['not_measured'])} not measured" if v["not_measured"] else "no iris value"
+            parts.append(f"{b}: undecided ({why})")
+            continue
+        iris = f"{v['iris']} {v['iris_relmse']:.4g}"
+        peer = f"{v['peer']} {v['peer_relmse']:.4g}" if "peer" in v else "no peer image yet"
+        parts.append(f"{b}: {'**iris**' if v['iris_lowest'] else v['peer']} ({iris} vs {peer})")
+    return "iris (its best variant) against the best peer: " + "; ".join(parts) + "."
+
+
 def equal_time_section(et: dict, args) -> list[str]:
     lines = ["", "## Equal time: relMSE of each renderer's best sampler against its own long reference", "",
              f"{args.et_width}×{args.et_height}, {args.threads} threads, sample counts {args.spp_list}, "
@@ -351,6 +395,8 @@ def equal_time_section(et: dict, args) -> list[str]:
             rows.append(row)
         lines += [f"### {scene}", "", markdown_table(rows, ["renderer", *[f"{b:g}s" for b in budgets]]), ""]
         lines.append(lowest_error_line(per, budgets))
+        lines.append("")
+        lines.append(iris_against_peers_line(iris_against_peers(per, budgets)))
         lines.append("")
     return lines
 
@@ -394,7 +440,7 @@ def main(argv=None):
     ap.add_argument("--no-timing", action="store_true", help="skip part 1")
     ap.add_argument("--equal-time", action="store_true", help="run part 2")
     ap.add_argument("--et-size", default="160x120")
-    ap.add_argument("--et-spp", default="4,16,64,256")
+    ap.add_argument("--et-spp", default="4,16,64,256,512")
     ap.add_argument("--ref-spp", type=int, default=2048)
     ap.add_argument("--out", default=str(HERE / "results" / "peers"))
     args = ap.parse_args(argv)

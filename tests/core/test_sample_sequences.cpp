@@ -83,11 +83,11 @@ TEST(SampleSequences, SobolMatchesTheKnownFirstPoints) {
 namespace {
 
 /// sobol2D as core/sample_sequences.h defines it, composed plainly: the shuffled index
-/// nestedUniformScramble(i, s0), each dimension's sobolBits Owen-scrambled with its own seed (the
-/// seeds s_k = SplitMix64 of the request's seed + k·golden ratio); `swap` puts dimension 0's bits
-/// in both coordinates (a wrong definition that the fast path must not match).
+/// nestedUniformScramble(i, s0), each dimension's sobolBits Owen-scrambled with its own seed (s0
+/// and s1 the low and high halves of the request's seed, s2 the low half of its SplitMix64);
+/// `wrong` puts dimension 0's bits in both coordinates (a definition the fast path must not match).
 vec2 plainSobol2D(uint64_t i, uint64_t seed, bool wrong = false) {
-    const auto part = [&](uint64_t k) { return uint32_t(mix64(seed + k * 0x9e3779b97f4a7c15ull)); };
+    const auto part = [&](int k) { return k == 0 ? uint32_t(seed) : k == 1 ? uint32_t(seed >> 32) : uint32_t(mix64(seed)); };
     const uint32_t index = nestedUniformScramble(uint32_t(i), part(0));
     const auto unit = [](uint32_t b) { return std::min(kOneMinusEpsilon, float(b) * 0x1p-32f); };
     return vec2(unit(nestedUniformScramble(sobolBits(index, 0), part(1))),
@@ -108,6 +108,10 @@ TEST(SampleSequences, FastSobolEqualsThePlainComposition) {
         ASSERT_EQ(fast.x, plain.x) << "index " << i << " seed " << seed;
         ASSERT_EQ(fast.y, plain.y) << "index " << i << " seed " << seed;
         ASSERT_EQ(sobol1D(i, seed), plain.x) << "index " << i << " seed " << seed;
+        const vec2 fromReversed = sobol2DReversed(reverseBits32(uint32_t(i)), seed);  // the Sampler's path
+        ASSERT_EQ(fromReversed.x, plain.x);
+        ASSERT_EQ(fromReversed.y, plain.y);
+        ASSERT_EQ(sobol1DReversed(reverseBits32(uint32_t(i)), seed), plain.x);
         wrongAgrees += sobol2D(i, seed).y == plainSobol2D(i, seed, true).y;
     }
     EXPECT_LT(wrongAgrees, 10);  // the control: another dimension's bits are told apart
