@@ -59,13 +59,6 @@ constexpr std::array<uint32_t, 32> sobolDimension1() {
 
 constexpr std::array<uint32_t, 32> kSobol1 = sobolDimension1();
 
-/// The 32 bits of x in reverse order, usable in constant expressions.
-constexpr uint32_t reversedConst(uint32_t x) {
-    uint32_t r = 0;
-    for (int k = 0; k < 32; ++k) r |= ((x >> k) & 1u) << (31 - k);
-    return r;
-}
-
 /// Dimension 1 by bytes, its bits reversed: the point is a xor of direction numbers, one per set
 /// bit of the index (Bratley & Fox 1988, eq. 4), so it is the xor of the four bytes' partial
 /// points; table[j][b] = reverse of the point of index b·2^(8j). Reversed because the scramble
@@ -77,7 +70,7 @@ constexpr std::array<std::array<uint32_t, 256>, 4> sobol1ReversedByteTables() {
             uint32_t x = 0;
             for (int k = 0; k < 8; ++k)
                 if ((b >> k) & 1u) x ^= kSobol1[size_t(8 * j + k)];
-            t[size_t(j)][b] = reversedConst(x);
+            t[size_t(j)][b] = reverseBits32(x);
         }
     return t;
 }
