@@ -17,8 +17,6 @@
 //                             [--threads=T] [--out=FILE.md]
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
-#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -26,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/io/atomic_file.h"
 #include "core/source_tree.h"
 #include "render/loader/scene_loader.h"
 #include "render/renderer.h"
@@ -159,13 +158,13 @@ int main(int argc, char** argv) {
 
     if (a.out.empty()) {
         std::cout << md.str();
-    } else {
-        std::ofstream f(a.out);
-        f << md.str();
-        if (!f) {
-            std::cerr << "bench_scaling_model: cannot write " << a.out << "\n";
-            return 1;
-        }
+        return 0;
+    }
+    try {
+        writeFileAtomically(a.out, md.str());  // never a half-written report
+    } catch (const std::exception& e) {
+        std::cerr << "bench_scaling_model: " << e.what() << "\n";
+        return 1;
     }
     return 0;
 }

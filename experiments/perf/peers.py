@@ -333,6 +333,13 @@ def lowest_error_line(per: dict, budgets: list[float]) -> str:
     return line + "."
 
 
+def budgets_of(per: dict) -> list[float]:
+    """The wall-time budgets of one scene's equal-time table: powers of two within the range of
+    all its renderers' measured runs."""
+    times = sorted(r["seconds"] for v in per.values() for r in v["rows"])
+    return [2.0 ** k for k in range(-3, 8) if times and times[0] <= 2.0 ** k <= times[-1]]
+
+
 def iris_against_peers(per: dict, budgets: list[float]) -> list[dict]:
     """Issue 37's question at each budget: is iris's lowest relMSE (over its variants) below every
     peer's? A renderer whose first run took longer than the budget has no image by then (a peer is
@@ -384,8 +391,7 @@ def equal_time_section(et: dict, args) -> list[str]:
              "interpolated log-log between the runs around it; — where the budget is outside the measured "
              "range. Lower is better.", ""]
     for scene, per in et.items():
-        times = sorted(r["seconds"] for v in per.values() for r in v["rows"])
-        budgets = [2.0 ** k for k in range(-3, 8) if times and times[0] <= 2.0 ** k <= times[-1]]
+        budgets = budgets_of(per)
         rows = []
         for n, v in per.items():
             row = {"renderer": n}

@@ -535,13 +535,12 @@ def scaling_model(ctx, reps):
     """experiments/benchmarks/bench_scaling_model.cpp: the 2-thread loss split into contention, pass
     ends and serial work from the loop's timeline, and the loop's modelled limit on many cores."""
     out = os.path.join(ctx.tmp, "scaling_model.md")
-    cmd = [ctx.exe("bench_scaling_model"), f"--scene={os.path.join(REPO, 'scenes', 'default.xml')}", "-Dres=192",
-           "--spp=64", f"--reps={reps}", "--threads=2", f"--out={out}"]
-    subprocess.run(cmd, env=ctx.env, check=True, stdout=subprocess.DEVNULL)
+    args = ["--scene=scenes/default.xml", "-Dres=192", "--spp=64", f"--reps={reps}", "--threads=2"]
+    exe = ctx.exe("bench_scaling_model")
+    subprocess.run([exe, *args, f"--out={out}"], env=ctx.env, cwd=REPO, check=True, stdout=subprocess.DEVNULL)
     with open(out) as f:
         text = f.read()
-    ctx.m["scaling_model"] = {"command": " ".join(os.path.relpath(c, REPO) if c.startswith(REPO) else c for c in cmd[:1]) +
-                              " " + " ".join(c for c in cmd[1:] if not c.startswith("--out=")), "markdown": text}
+    ctx.m["scaling_model"] = {"command": " ".join([os.path.relpath(exe, REPO), *args]), "markdown": text}
     return text
 
 
@@ -601,9 +600,7 @@ def t8_peers(ctx):
     with open(os.path.join(out, "peers.json")) as f:
         et = json.load(f).get("equal_time") or {}
     for scene, per in et.items():
-        times = sorted(r["seconds"] for v in per.values() for r in v["rows"])
-        budgets = [2.0 ** k for k in range(-3, 8) if times and times[0] <= 2.0 ** k <= times[-1]]
-        verdicts = [v for v in peers.iris_against_peers(per, budgets) if v["decided"]]
+        verdicts = [v for v in peers.iris_against_peers(per, peers.budgets_of(per)) if v["decided"]]
         won = [f"{v['budget']:g}s" for v in verdicts if v["iris_lowest"]]
         lost = [f"{v['budget']:g}s ({v['peer']})" for v in verdicts if not v["iris_lowest"]]
         ctx.row("8", f"Equal time, {scene}: budgets where iris's best variant has the lowest relMSE (peers/peers.md)",
