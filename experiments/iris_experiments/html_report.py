@@ -17,6 +17,10 @@ from . import exr
 
 MAX_SIDE = 256        # images are subsampled (every k-th pixel) to at most this many pixels per side
 MAX_TESTS = 8         # test images per comparison
+# The viewers' pixels of one report, in bytes of base64 text (each pixel 3 float16 = 6 bytes, 8 as
+# base64): a report with many comparisons takes a larger step for all of them, so that its viewers
+# stay within 2 MB (per_bounce_phase's ten 256² images made a 5.8 MiB page at MAX_SIDE alone).
+PAYLOAD_BUDGET = 2_000_000
 
 
 def _inline(text: str) -> str:
@@ -67,13 +71,39 @@ def image_payload(path: Path, step: int) -> dict:
             "data": base64.b64encode(data.tobytes()).decode("ascii")}
 
 
-def comparison_payload(comp: dict) -> dict:
-    """{"title", "reference": EXR, "tests": [(label, EXR)]} → the viewer's data (one subsampling
-    step for all images of the comparison, so that pixels line up)."""
+def _shown(comp: dict) -> tuple[int, int, list]:
+    """Full width and height of a comparison's reference, and the test images that are shown."""
     pixels, _, _ = exr.read_exr(str(comp["reference"]))
     h, w = pixels.shape[:2]
-    step = max(1, -(-max(w, h) // MAX_SIDE))
-    tests = [(label, p) for label, p in comp["tests"] if Path(p).exists()][:MAX_TESTS]
+    return w, h, [(label, p) for label, p in comp["tests"] if Path(p).exists()][:MAX_TESTS]
+
+
+def _ceil_div(a: int, b: int) -> int:
+    return -(-a // b)
+
+
+def payload_bytes(w: int, h: int, images: int, step: int) -> int:
+    """Base64 bytes of `images` images of w×h shown at every `step`-th pixel (3 float16 each)."""
+    return images * 4 * _ceil_div(_ceil_div(w, step) * _ceil_div(h, step) * 6, 3)
+
+
+def report_min_step(comparisons, budget: int = PAYLOAD_BUDGET) -> int:
+    """The smallest step, at least each comparison's MAX_SIDE step, that keeps all viewers' pixels
+    of a report within `budget` bytes (stepping further only when one step cannot)."""
+    shown = [_shown(c) for c in comparisons]
+    step = 1
+    while step < 64 and sum(payload_bytes(w, h, 1 + len(t), max(step, _ceil_div(max(w, h), MAX_SIDE)))
+                            for w, h, t in shown) > budget:
+        step += 1
+    return step
+
+
+def comparison_payload(comp: dict, min_step: int = 1) -> dict:
+    """{"title", "reference": EXR, "tests": [(label, EXR)]} → the viewer's data (one subsampling
+    step for all images of the comparison, so that pixels line up; at least `min_step`, the
+    report's step from report_min_step)."""
+    w, h, tests = _shown(comp)
+    step = max(min_step, _ceil_div(max(w, h), MAX_SIDE))
     return {"title": comp["title"], "step": step, "full_size": [w, h],
             "reference": {"label": "reference", **image_payload(comp["reference"], step)},
             "tests": [{"label": label, **image_payload(p, step)} for label, p in tests]}
@@ -215,8 +245,9 @@ def write_html_report(path: Path, *, title: str, question: str, provenance: dict
                  "<h2>Conclusions</h2><p>(no conclusions: no results)</p>")
     for fig in figures:
         parts.append(f"<img class='figure' alt='{esc(Path(fig).stem)}' src='{data_uri(fig)}'>")
+    min_step = report_min_step(comparisons)
     for i, comp in enumerate(comparisons):
-        parts.append(_viewer(i, comparison_payload(comp)))
+        parts.append(_viewer(i, comparison_payload(comp, min_step)))
     for heading, text in sections:
         parts.append(f"<h2>{esc(heading)}</h2>{markdown_to_html(text)}")
     parts.append("<h2>Settings</h2><table><tbody>" + "".join(

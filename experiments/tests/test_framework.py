@@ -174,6 +174,51 @@ class ExrTest(TempDirTest):
             exr.read_exr(str(self.tmp / "cut.exr"))
 
 
+class HtmlPayloadBudgetTest(TempDirTest):
+    """The viewers of one HTML report share a pixel budget (html_report.PAYLOAD_BUDGET): a report with
+    many comparisons shows every image at a larger step, a small one at full resolution."""
+
+    def comparison(self, name, size, tests):
+        rng = np.random.default_rng(len(name))
+        paths = []
+        for i in range(1 + tests):
+            path = self.tmp / f"{name}_{i}.exr"
+            exr.write_exr(str(path), rng.random((size, size, 3)).astype(np.float32))
+            paths.append(path)
+        return {"title": name, "reference": paths[0], "tests": [(f"t{i}", p) for i, p in enumerate(paths[1:])]}
+
+    def viewer_bytes(self, page):
+        import re
+        return [len(json.loads(m)["reference"]["data"]) + sum(len(t["data"]) for t in json.loads(m)["tests"])
+                for m in re.findall(r'<script type="application/json" id="[^"]+">(.*?)</script>', page, re.S)]
+
+    def write(self, comparisons):
+        from iris_experiments import html_report
+        path = html_report.write_html_report(self.tmp / "report.html", title="t", question="q", provenance={},
+                                             machine={}, settings={}, conclusions=[], sections=[],
+                                             comparisons=comparisons)
+        return path.read_text()
+
+    def test_many_comparisons_take_a_larger_step_within_the_budget(self):
+        from iris_experiments import html_report
+        small = [self.comparison("small", 64, 2)]
+        self.assertEqual(html_report.report_min_step(small), 1)
+        self.assertIn('"step": 1', self.write(small))
+        # per_bounce_phase's shape: ten 256² images in two viewers, 5.2 MB of base64 at MAX_SIDE alone.
+        many = [self.comparison("a", 256, 3), self.comparison("b", 256, 5)]
+        self.assertGreater(sum(html_report.payload_bytes(256, 256, n, 1) for n in (4, 6)), html_report.PAYLOAD_BUDGET)
+        step = html_report.report_min_step(many)
+        self.assertEqual(step, 2)
+        page = self.write(many)
+        sizes = self.viewer_bytes(page)
+        self.assertEqual(sizes, [html_report.payload_bytes(256, 256, 4, 2), html_report.payload_bytes(256, 256, 6, 2)])
+        self.assertLessEqual(sum(sizes), html_report.PAYLOAD_BUDGET)
+        self.assertIn("Shown at 1/2 resolution", page)
+        # A smaller budget steps further; one that no step meets stops at the largest step tried.
+        self.assertEqual(html_report.report_min_step(many, budget=sum(sizes) // 2), 3)
+        self.assertEqual(html_report.report_min_step(many, budget=0), 64)
+
+
 @unittest.skipUnless(HAVE_TOOLS, f"compare/merge not built in {BUILD}")
 class MergeAndCompareTest(TempDirTest):
     def test_merge_weights_by_spp_and_reads_back_zip_exr(self):
