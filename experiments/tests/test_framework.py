@@ -487,10 +487,41 @@ class ProvenanceAndStatusTest(unittest.TestCase):
         self.assertIn("- status: ", status)
         # A dirty tree is STALE whatever the scale; a clean one at scaled counts is SCALED.
         self.assertTrue(run_all.result_status("channel_count", fields).startswith("STALE: not made from a clean commit"))
-        clean = dict(fields, git="commit abc (clean working tree)")
-        self.assertEqual(run_all.result_status("channel_count", clean),
+        # A commit this checkout does not know cannot be compared with the sources, and says so.
+        unknown = dict(fields, git="commit abc (clean working tree)")
+        self.assertEqual(run_all.result_status("channel_count", unknown),
+                         "SCALED: sample counts x 0.5 of the experiment's definition, from a clean commit (its commit "
+                         "is not in this checkout: sources not compared)")
+        # A result's commit against HEAD, in a repository of its own (CI's checkout may be shallow):
+        # nothing changed since, so current (or SCALED); a renderer source changed since, so OUTDATED;
+        # a change outside the sources it depends on (docs) keeps it current.
+        repo = Path(tempfile.mkdtemp(prefix="iris_status_repo_"))
+        self.addCleanup(shutil.rmtree, repo, ignore_errors=True)
+
+        def git(*a):
+            return subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@t", *a], cwd=repo, check=True,
+                                  capture_output=True, text=True).stdout.strip()
+        git("init", "-q")
+        (repo / "core").mkdir()
+        (repo / "core" / "a.cpp").write_text("1")
+        git("add", "-A")
+        git("commit", "-q", "-m", "a")
+        made = git("rev-parse", "HEAD")
+        clean = dict(fields, git=f"commit {made} (clean working tree)")
+        self.assertEqual(run_all.result_status("channel_count", clean, repo),
                          "SCALED: sample counts x 0.5 of the experiment's definition, from a clean commit")
-        self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""})), "current")
+        self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""}), repo), "current")
+        (repo / "docs").mkdir()
+        (repo / "docs" / "d.md").write_text("doc")
+        git("add", "-A")
+        git("commit", "-q", "-m", "docs")
+        self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""}), repo), "current")
+        (repo / "core" / "a.cpp").write_text("2")
+        git("commit", "-q", "-am", "code")
+        self.assertEqual(run_all.sources_changed(made, "channel_count", repo), ["core/a.cpp"])
+        self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""}), repo),
+                         f"OUTDATED: 1 source files of the renderer or of this experiment changed since commit "
+                         f"{made[:7]} (core/a.cpp); regenerate it")
 
 
 if __name__ == "__main__":
