@@ -45,7 +45,8 @@ ColorManager::ColorManager(const std::string& configPath) {
     } else {
         impl->path = shippedConfigPath();
     }
-    if (!std::filesystem::is_regular_file(impl->path)) fail(impl->path, ": OpenColorIO config not found");
+    std::error_code ec;  // a path the file system refuses (too long) is "not found", not an exception
+    if (!std::filesystem::is_regular_file(impl->path, ec)) fail(impl->path, ": OpenColorIO config not found");
     try {
         impl->config = OCIO::Config::CreateFromFile(impl->path.c_str());
         impl->config->validate();

@@ -9,7 +9,12 @@ namespace iris::gltf {
 
 namespace {
 
-bool fileExists(const std::string& path, void*) { return std::filesystem::is_regular_file(path); }
+/// A URI that is no file name at all (too long, say) is a missing file, not an exception: the
+/// error_code overload never throws.
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+}
 
 std::string expandPath(const std::string& path, void*) { return path; }
 

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <typeinfo>
 
@@ -181,6 +184,23 @@ TEST(GltfLoader, HostileFilesAreRefusedWithFileAndPath) {
         EXPECT_TRUE(test::contains(e, h.file)) << h.file << ": " << e;
         EXPECT_TRUE(test::contains(e, h.expect)) << h.file << ": " << e;
     }
+}
+
+// The CI fuzzer's finding (crash-26427ef9...): a mangled data URI ("data:a1.QAAA...", thousands of
+// characters) is a file name the file system refuses with ENAMETOOLONG. std::filesystem's
+// throwing overload turned that into a filesystem_error, which no reader catches; it must be
+// refused like any missing buffer, with the file named.
+TEST(GltfLoader, AFileNameTooLongForTheFileSystemIsAMissingBuffer) {
+    const std::string uri = "data:a1." + std::string(5000, 'A');
+    const std::string path = (std::filesystem::temp_directory_path() / "iris_gltf_long_uri.gltf").string();
+    {
+        std::ofstream f(path);
+        f << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12, "uri": ")" << uri << R"("}]})";
+    }
+    const std::string e = test::errorOf([&] { loadSceneFile(path); });
+    std::remove(path.c_str());
+    EXPECT_TRUE(test::contains(e, "iris_gltf_long_uri.gltf")) << e;
+    EXPECT_FALSE(test::contains(e, "filesystem error")) << e;
 }
 
 TEST(GltfLoader, UnsupportedUsedExtensionsAreAWarning) {
