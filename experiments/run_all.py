@@ -181,17 +181,27 @@ def status_markdown(names) -> str:
     return "\n".join(lines)
 
 
-# What a result depends on: the renderer's sources (every layer, the apps and the build) and the
-# experiment's own script, framework and scenes.
-RENDERER_SOURCES = ["CMakeLists.txt", "core", "spectral", "materials", "media", "integrators", "render", "scenes",
-                    "apps", "metrics"]
+# What a result depends on: the renderer's sources (every layer below experiments/ in the layer
+# table of docs/architecture.md, the same table tests/architecture/check_layers.py reads, the build
+# and the shipped scenes/ that experiments render) and the experiment's own script, framework and
+# scenes.
+LAYER_ROW = re.compile(r"^\|\s*(\d+)\s*\|\s*`([\w./-]+)/`\s*\|", re.M)
+
+
+def renderer_sources(root: Path = HERE.parent) -> list:
+    """CMakeLists.txt, scenes/ and the folders of the layers below experiments/ (docs/architecture.md)."""
+    table = root / "docs" / "architecture.md"
+    layers = {folder: int(rank) for rank, folder in LAYER_ROW.findall(table.read_text())} if table.exists() else {}
+    if "experiments" not in layers:
+        raise SystemExit(f"{table}: no layer table with a row for experiments/ (rows \"| <layer> | `folder/` | ...\")")
+    return ["CMakeLists.txt", "scenes"] + sorted(f for f, rank in layers.items() if rank < layers["experiments"])
 
 
 def sources_changed(commit: str, name: str, root: Path = HERE.parent) -> list | None:
     """Files of the renderer or of experiment `name` that differ between `commit` and HEAD in the
     repository at `root` (None when `commit` is not in its history, e.g. in a shallow clone, so
     nothing can be compared)."""
-    paths = RENDERER_SOURCES + [f"experiments/{name}.py", "experiments/iris_experiments", "experiments/scenes"]
+    paths = renderer_sources(root) + [f"experiments/{name}.py", "experiments/iris_experiments", "experiments/scenes"]
     known = subprocess.run(["git", "cat-file", "-e", f"{commit}^{{commit}}"], cwd=root, capture_output=True)
     if known.returncode != 0:
         return None

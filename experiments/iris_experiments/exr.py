@@ -134,8 +134,8 @@ def read_exr(path: str):
         raise ExrError(f"{path}: corrupt or truncated EXR ({e})") from e
 
 
-def read_exr_metadata(path: str) -> dict:
-    """String attributes of an EXR header."""
+def _header_attributes(path: str) -> dict:
+    """The attributes of an EXR header, read from the file's first MiB."""
     try:
         with open(path, "rb") as f:
             data = f.read(1 << 20)
@@ -145,7 +145,21 @@ def read_exr_metadata(path: str) -> dict:
         attrs, _ = _read_header(data, path)
     except (IndexError, ValueError, struct.error) as e:
         raise ExrError(f"{path}: corrupt EXR header ({e})") from e
-    return {k: v[1].decode("utf-8", "replace") for k, v in attrs.items() if v[0] == "string"}
+    return attrs
+
+
+def read_exr_metadata(path: str) -> dict:
+    """String attributes of an EXR header."""
+    return {k: v[1].decode("utf-8", "replace") for k, v in _header_attributes(path).items() if v[0] == "string"}
+
+
+def exr_size(path: str) -> tuple[int, int]:
+    """(width, height) of an EXR's data window, from its header alone."""
+    window = _header_attributes(path).get("dataWindow")
+    if window is None or len(window[1]) != 16:
+        raise ExrError(f"{path}: no data window in the EXR header")
+    xmin, ymin, xmax, ymax = struct.unpack("<iiii", window[1])
+    return xmax - xmin + 1, ymax - ymin + 1
 
 
 def _unzip(raw: bytes) -> bytes:

@@ -72,9 +72,9 @@ def image_payload(path: Path, step: int) -> dict:
 
 
 def _shown(comp: dict) -> tuple[int, int, list]:
-    """Full width and height of a comparison's reference, and the test images that are shown."""
-    pixels, _, _ = exr.read_exr(str(comp["reference"]))
-    h, w = pixels.shape[:2]
+    """Full width and height of a comparison's reference (from its header), and the test images
+    that are shown."""
+    w, h = exr.exr_size(str(comp["reference"]))
     return w, h, [(label, p) for label, p in comp["tests"] if Path(p).exists()][:MAX_TESTS]
 
 
@@ -87,10 +87,11 @@ def payload_bytes(w: int, h: int, images: int, step: int) -> int:
     return images * 4 * _ceil_div(_ceil_div(w, step) * _ceil_div(h, step) * 6, 3)
 
 
-def report_min_step(comparisons, budget: int = PAYLOAD_BUDGET) -> int:
+def report_min_step(comparisons, budget: int = PAYLOAD_BUDGET, shown=None) -> int:
     """The smallest step, at least each comparison's MAX_SIDE step, that keeps all viewers' pixels
-    of a report within `budget` bytes (stepping further only when one step cannot)."""
-    shown = [_shown(c) for c in comparisons]
+    of a report within `budget` bytes (stepping further only when one step cannot). `shown`: the
+    comparisons' _shown, when the caller has them already."""
+    shown = shown if shown is not None else [_shown(c) for c in comparisons]
     step = 1
     while step < 64 and sum(payload_bytes(w, h, 1 + len(t), max(step, _ceil_div(max(w, h), MAX_SIDE)))
                             for w, h, t in shown) > budget:
@@ -98,11 +99,11 @@ def report_min_step(comparisons, budget: int = PAYLOAD_BUDGET) -> int:
     return step
 
 
-def comparison_payload(comp: dict, min_step: int = 1) -> dict:
+def comparison_payload(comp: dict, min_step: int = 1, shown=None) -> dict:
     """{"title", "reference": EXR, "tests": [(label, EXR)]} → the viewer's data (one subsampling
     step for all images of the comparison, so that pixels line up; at least `min_step`, the
-    report's step from report_min_step)."""
-    w, h, tests = _shown(comp)
+    report's step from report_min_step; `shown`: the comparison's _shown, when known)."""
+    w, h, tests = shown if shown is not None else _shown(comp)
     step = max(min_step, _ceil_div(max(w, h), MAX_SIDE))
     return {"title": comp["title"], "step": step, "full_size": [w, h],
             "reference": {"label": "reference", **image_payload(comp["reference"], step)},
@@ -245,9 +246,10 @@ def write_html_report(path: Path, *, title: str, question: str, provenance: dict
                  "<h2>Conclusions</h2><p>(no conclusions: no results)</p>")
     for fig in figures:
         parts.append(f"<img class='figure' alt='{esc(Path(fig).stem)}' src='{data_uri(fig)}'>")
-    min_step = report_min_step(comparisons)
+    shown = [_shown(c) for c in comparisons]  # each reference's size read once, from its header
+    min_step = report_min_step(comparisons, shown=shown)
     for i, comp in enumerate(comparisons):
-        parts.append(_viewer(i, comparison_payload(comp, min_step)))
+        parts.append(_viewer(i, comparison_payload(comp, min_step, shown[i])))
     for heading, text in sections:
         parts.append(f"<h2>{esc(heading)}</h2>{markdown_to_html(text)}")
     parts.append("<h2>Settings</h2><table><tbody>" + "".join(

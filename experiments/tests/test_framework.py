@@ -164,7 +164,10 @@ class ExrTest(TempDirTest):
         np.testing.assert_array_equal(exr.rgb_of(pixels, names), img)
         self.assertEqual(meta["iris.spp"], "16")
         self.assertEqual(exr.read_exr_metadata(str(self.tmp / "a.exr"))["iris.spp"], "16")
+        self.assertEqual(exr.exr_size(str(self.tmp / "a.exr")), (7, 5))  # (width, height), header only
         (self.tmp / "bad.exr").write_text("not an image")
+        with self.assertRaises(exr.ExrError):
+            exr.exr_size(str(self.tmp / "bad.exr"))
         with self.assertRaises(exr.ExrError) as cm:
             exr.read_exr(str(self.tmp / "bad.exr"))
         self.assertIn("bad.exr", str(cm.exception))
@@ -504,6 +507,9 @@ class ProvenanceAndStatusTest(unittest.TestCase):
         git("init", "-q")
         (repo / "core").mkdir()
         (repo / "core" / "a.cpp").write_text("1")
+        (repo / "docs").mkdir()  # the layer table run_all.renderer_sources reads
+        (repo / "docs" / "architecture.md").write_text("| 0 | `core/` | x | - |\n| 7 | `experiments/` | x | - |\n"
+                                                     "| 8 | `tests/` | x | - |\n")
         git("add", "-A")
         git("commit", "-q", "-m", "a")
         made = git("rev-parse", "HEAD")
@@ -511,8 +517,10 @@ class ProvenanceAndStatusTest(unittest.TestCase):
         self.assertEqual(run_all.result_status("channel_count", clean, repo),
                          "SCALED: sample counts x 0.5 of the experiment's definition, from a clean commit")
         self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""}), repo), "current")
-        (repo / "docs").mkdir()
+        self.assertEqual(run_all.renderer_sources(repo), ["CMakeLists.txt", "scenes", "core"])
         (repo / "docs" / "d.md").write_text("doc")
+        (repo / "tests").mkdir()  # a layer above experiments/ is no source of a result
+        (repo / "tests" / "t.cpp").write_text("t")
         git("add", "-A")
         git("commit", "-q", "-m", "docs")
         self.assertEqual(run_all.result_status("channel_count", dict(clean, **{"spp scale": ""}), repo), "current")
