@@ -196,6 +196,10 @@ TEST(ColorManagement, ErrorsNameTheFile) {
     const std::string missing = (tempDir() / "no_such_config.ocio").string();
     const std::string msg = errorOf([&] { ColorManager cm(missing); });
     EXPECT_NE(msg.find(missing), std::string::npos) << msg;
+    // A name the file system refuses (ENAMETOOLONG) is "not found" too, not a filesystem_error.
+    const std::string tooLong = (tempDir() / std::string(300, 'c')).string() + ".ocio";
+    const std::string msgLong = errorOf([&] { ColorManager cm(tooLong); });
+    EXPECT_NE(msgLong.find("OpenColorIO config not found"), std::string::npos) << msgLong;
     const std::string garbage = (tempDir() / "garbage.ocio").string();
     std::ofstream(garbage) << "this: is: not [an ocio config\n";
     const std::string msg2 = errorOf([&] { ColorManager cm(garbage); });
