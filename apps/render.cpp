@@ -106,8 +106,9 @@ Sampling
                            keep its film state with --checkpoint and add the shards with `merge`;
                            give the whole render's --spp too when the sampler is stratified or
                            multijitter (the pattern size the shards share)
-  --sampler NAME           independent, stratified, multijitter or sobol (default: the scene's
-                           <sampler>); docs/rendering.md says how each draws its points
+  --sampler NAME           independent, stratified, multijitter, sobol or highdimsobol
+                           (default: the scene's <sampler>); docs/rendering.md says how each
+                           draws its points
   --time-limit SEC         stop after SEC seconds of wall time (with --spp 0: render until then)
   --seed N                 random seed (default 0); images are identical for any --threads
   --threads N              worker threads (default: all cores)

@@ -60,7 +60,8 @@ struct SamplePattern {
 /// pixel, the sample index and the request's position in the path's sequence of get1D/get2D calls
 /// (its dimension), never on scheduling. Independent: one PCG32 stream per pair. Other sequences:
 /// request d takes its point from the sequence with a seed of (seed, pixel, d), jittered with the
-/// pair's PCG32 stream.
+/// pair's PCG32 stream; highdimsobol's requests take consecutive dimensions of one Sobol point
+/// (core/sample_sequences.h).
 class Sampler {
 public:
     Sampler(uint64_t seed, uint64_t pixelIndex, uint64_t sampleIndex)
@@ -93,6 +94,7 @@ private:
     uint64_t pixelSeed_ = 0, sampleIndex_ = 0;
     uint32_t reversedIndex_ = 0;  // sobol's start: the sample index's bits reversed
     uint32_t dimension_ = 0;
+    int sobolDimension_ = 0;  // highdimsobol: the next joint Sobol dimension
 };
 
 }  // namespace iris

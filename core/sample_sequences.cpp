@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/rng.h"
+#include "core/sobol_directions.h"
 
 namespace iris {
 
@@ -194,15 +195,30 @@ vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed) {
     return sobol2DReversed(reverseBits32(uint32_t(sampleIndex)), dimensionSeed);
 }
 
+float highDimSobol(uint32_t sampleIndex, int dimension, uint64_t pixelSeed) {
+    const uint32_t seed = uint32_t(mix64(pixelSeed + uint64_t(dimension + 1) * 0xd1b54a32d192ed03ull));
+    return unitFloat(nestedUniformScramble(sobolPointBits(sampleIndex, dimension), seed));
+}
+
 float Sampler::patterned1D() {
     const uint64_t d = nextDimensionSeed();
-    if (pattern_.sequence == SampleSequence::Sobol) return sobol1DReversed(reversedIndex_, d);
+    if (pattern_.sequence == SampleSequence::HighDimSobol && sobolDimension_ < kSobolDimensions)
+        return highDimSobol(uint32_t(sampleIndex_), sobolDimension_++, pixelSeed_);
+    if (pattern_.sequence == SampleSequence::Sobol || pattern_.sequence == SampleSequence::HighDimSobol)
+        return sobol1DReversed(reversedIndex_, d);
     return stratified1D(sampleIndex_, pattern_.size, d, jitter());  // stratified and multijitter
 }
 
 vec2 Sampler::patterned2D() {
     const uint64_t d = nextDimensionSeed();
-    if (pattern_.sequence == SampleSequence::Sobol) return sobol2DReversed(reversedIndex_, d);
+    if (pattern_.sequence == SampleSequence::HighDimSobol && sobolDimension_ + 1 < kSobolDimensions) {
+        const int j = sobolDimension_;
+        sobolDimension_ += 2;
+        return vec2(highDimSobol(uint32_t(sampleIndex_), j, pixelSeed_), highDimSobol(uint32_t(sampleIndex_), j + 1, pixelSeed_));
+    }
+    if (pattern_.sequence == SampleSequence::HighDimSobol) sobolDimension_ = kSobolDimensions;  // the rest padded
+    if (pattern_.sequence == SampleSequence::Sobol || pattern_.sequence == SampleSequence::HighDimSobol)
+        return sobol2DReversed(reversedIndex_, d);
     const float jx = jitter();
     const vec2 j(jx, jitter());
     return pattern_.sequence == SampleSequence::Multijitter ? multijitter2D(sampleIndex_, pattern_.size, d, j)

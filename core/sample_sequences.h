@@ -12,6 +12,14 @@
 //    hashed nested uniform scrambling (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4),
 //    2020): every aligned block of 2^k consecutive sample indices is a (0, k, 2)-net in each 2D
 //    request and stratified in 2^k strata in each 1D request. No pattern size: any number works.
+//  - highdimsobol: the first kSobolDimensions dimensions of the Sobol sequence jointly (Joe & Kuo
+//    2008 direction numbers, core/sobol_directions.h), 1D requests taking one dimension and 2D
+//    requests two, in the order the path asks; each dimension Owen-scrambled with a seed of its
+//    own per pixel (Burley 2020's hash), the sample index unshuffled. Owen scrambling keeps the
+//    sequence's net properties (Owen 1995), so every aligned block of 2^k samples of a pixel is a
+//    (t, k, s)-net over all its first dimensions together, not only within each request as
+//    `sobol`'s padded points are: the joint stratification behind quasi-Monte Carlo's faster
+//    convergence on smooth integrands. Requests past the last dimension take `sobol`'s points.
 // Sample indices at or beyond the pattern size n of stratified and multijitter start a new,
 // independently permuted pattern ("round" ⌊index / n⌋).
 #pragma once
@@ -22,7 +30,7 @@
 
 namespace iris {
 
-enum class SampleSequence { Independent, Stratified, Multijitter, Sobol };
+enum class SampleSequence { Independent, Stratified, Multijitter, Sobol, HighDimSobol };
 
 /// A bijection of [0, n) chosen by `seed` (an invertible hash of ⌈log2 n⌉-bit integers, cycle-walked
 /// into [0, n) as Kensler 2013, section 3, does, with a hash of our own, then rotated by a seeded
@@ -55,5 +63,8 @@ vec2 sobol2D(uint64_t sampleIndex, uint64_t dimensionSeed);
 /// all its requests (Sampler, core/rng.h).
 float sobol1DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed);
 vec2 sobol2DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed);
+/// highdimsobol's coordinate in Sobol dimension `dimension` (< kSobolDimensions) of a pixel's
+/// sample: sobolPointBits(sampleIndex, dimension) Owen-scrambled with a seed of (pixelSeed, dimension).
+float highDimSobol(uint32_t sampleIndex, int dimension, uint64_t pixelSeed);
 
 }  // namespace iris

@@ -17,7 +17,7 @@ struct SamplerDescription {
 using SamplerRegistry = Registry<SamplerDescription>;
 
 /// The sequences by the names of the samplers that draw them: "independent", "stratified",
-/// "multijitter", "sobol" (the names --sampler and the Python module accept).
+/// "multijitter", "sobol", "highdimsobol" (the names --sampler and the Python module accept).
 SampleSequence sampleSequenceNamed(const std::string& name);
 const char* sampleSequenceName(SampleSequence s);
 

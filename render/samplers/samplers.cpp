@@ -5,6 +5,9 @@
 //   multijitter               Kensler's correlated multi-jittered points, jitter (default true)
 //   sobol, ldsampler (0.6)    Owen-scrambled Sobol points (Burley 2020); 0.6's ldsampler drew
 //                             (0,2)-sequence points, which these are too
+//   highdimsobol              the first 32 Sobol dimensions jointly, Owen-scrambled per pixel
+//                             (iris's own name; Mitsuba 0.6's `sobol` is a high-dimensional Sobol
+//                             sampler too, but iris keeps `sobol` for the padded points above)
 //   orthogonal, halton, hammersley: accepted for their sample_count, drawn as independent (iris
 //                             has no orthogonal-array, Halton or Hammersley sequence yet).
 // seed, dimension and scramble are accepted and do not change the points: every sequence is
@@ -48,14 +51,15 @@ std::shared_ptr<SamplerDescription> jitteredSampler(const Properties& p) {
 constexpr std::pair<SampleSequence, const char*> kNames[] = {{SampleSequence::Independent, "independent"},
                                                              {SampleSequence::Stratified, "stratified"},
                                                              {SampleSequence::Multijitter, "multijitter"},
-                                                             {SampleSequence::Sobol, "sobol"}};
+                                                             {SampleSequence::Sobol, "sobol"},
+                                                             {SampleSequence::HighDimSobol, "highdimsobol"}};
 
 }  // namespace
 
 SampleSequence sampleSequenceNamed(const std::string& name) {
     for (const auto& [s, n] : kNames)
         if (name == n) return s;
-    fail("unknown sampler '", name, "' (supported: independent, stratified, multijitter, sobol)");
+    fail("unknown sampler '", name, "' (supported: independent, stratified, multijitter, sobol, highdimsobol)");
 }
 
 const char* sampleSequenceName(SampleSequence s) {
@@ -69,6 +73,7 @@ IRIS_REGISTER(SamplerRegistry, "stratified", jitteredSampler<SampleSequence::Str
 IRIS_REGISTER(SamplerRegistry, "multijitter", jitteredSampler<SampleSequence::Multijitter>);
 IRIS_REGISTER(SamplerRegistry, "sobol", unjitteredSampler<SampleSequence::Sobol>);
 IRIS_REGISTER(SamplerRegistry, "ldsampler", unjitteredSampler<SampleSequence::Sobol>);
+IRIS_REGISTER(SamplerRegistry, "highdimsobol", unjitteredSampler<SampleSequence::HighDimSobol>);
 IRIS_REGISTER(SamplerRegistry, "orthogonal", unjitteredSampler<SampleSequence::Independent>);
 IRIS_REGISTER(SamplerRegistry, "halton", unjitteredSampler<SampleSequence::Independent>);
 IRIS_REGISTER(SamplerRegistry, "hammersley", unjitteredSampler<SampleSequence::Independent>);

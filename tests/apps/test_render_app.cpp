@@ -296,6 +296,8 @@ TEST(RenderApp, SamplerOptionChoosesTheSequenceAndSppNamesThePattern) {
     const std::string app = appPath("render") + " " + scene + " -o " + out + " --quiet --no-png";
     ASSERT_EQ(runCommand(app + " --spp 2 --sampler sobol").exitCode, 0);
     EXPECT_EQ(metadataValue(readEXRMetadata(out), "iris.sampler"), "sobol");
+    ASSERT_EQ(runCommand(app + " --spp 2 --sampler highdimsobol").exitCode, 0);
+    EXPECT_EQ(metadataValue(readEXRMetadata(out), "iris.sampler"), "highdimsobol");
     // --spp names the pattern of the whole render even after --spp-range, whose count it keeps.
     std::filesystem::remove(ckpt);
     const RunResult shard = runCommand(app + " --spp-range 0:2 --spp 4 --sampler stratified --checkpoint " + ckpt);
@@ -305,7 +307,7 @@ TEST(RenderApp, SamplerOptionChoosesTheSequenceAndSppNamesThePattern) {
     EXPECT_EQ(metadataValue(meta, "iris.spp_target"), "2");
     const RunResult bad = runCommand(app + " --sampler halton");
     EXPECT_EQ(bad.exitCode, 2);
-    EXPECT_NE(bad.stderrText.find("unknown sampler 'halton' (supported: independent, stratified, multijitter, sobol)"), std::string::npos)
+    EXPECT_NE(bad.stderrText.find("unknown sampler 'halton' (supported: independent, stratified, multijitter, sobol, highdimsobol)"), std::string::npos)
         << bad.stderrText;
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/rng.h"
 #include "core/sample_sequences.h"
+#include "core/sobol_directions.h"
 
 using namespace iris;
 
@@ -206,6 +207,95 @@ TEST(SampleSequences, SobolIsANetInEveryAlignedBlock) {
     }
 }
 
+TEST(SampleSequences, JoeKuoRowsArePrimitivePolynomialsWithValidInitialNumbers) {
+    // A typo in the table shows here: each row's polynomial x^s + a_1 x^(s−1) + … + 1 must be
+    // primitive over GF(2) (x has order 2^s − 1 modulo it), each m_k odd and below 2^k.
+    int rowsChecked = 0;
+    for (const SobolPolynomial& row : kJoeKuoRows) {
+        const int s = row.degree;
+        const uint32_t poly = (1u << s) | (row.a << 1) | 1u;
+        uint32_t x = 1, order = 0;
+        do {  // multiply by x modulo poly until 1 comes back
+            x <<= 1;
+            if (x & (1u << s)) x ^= poly;
+            ++order;
+        } while (x != 1u && order <= (1u << s));
+        EXPECT_EQ(order, (1u << s) - 1u) << "row " << rowsChecked + 2;
+        for (int k = 0; k < s; ++k) {
+            EXPECT_EQ(row.m[size_t(k)] & 1u, 1u) << "row " << rowsChecked + 2 << " m_" << k + 1;
+            EXPECT_LT(row.m[size_t(k)], 1u << (k + 1)) << "row " << rowsChecked + 2 << " m_" << k + 1;
+        }
+        ++rowsChecked;
+    }
+    EXPECT_EQ(rowsChecked, kSobolDimensions - 1);
+    // A wrong polynomial is rejected: x^2 + 1 = (x + 1)^2 is not primitive (x has order 2, not 3).
+    uint32_t x = 1, order = 0;
+    do {
+        x <<= 1;
+        if (x & 4u) x ^= 0b101u;
+        ++order;
+    } while (x != 1u && order <= 4u);
+    EXPECT_NE(order, 3u);
+}
+
+TEST(SampleSequences, SobolDimensionsMatchTheTwoKnownOnesAndAreEachStratified) {
+    for (uint32_t i = 0; i < 1024; ++i) {
+        ASSERT_EQ(sobolPointBits(i, 0), sobolBits(i, 0)) << i;  // van der Corput
+        ASSERT_EQ(sobolPointBits(i, 1), sobolBits(i, 1)) << i;  // Joe & Kuo's row 2 is x + 1
+    }
+    // Every dimension alone is a (0, m, 1)-net: its first 2^m points fill 2^m strata once each.
+    for (int d = 0; d < kSobolDimensions; ++d) {
+        std::vector<float> v;
+        for (uint32_t i = 0; i < 512; ++i) v.push_back(float(sobolPointBits(i, d) * 0x1p-32));
+        EXPECT_TRUE(eachStratumOnce(v, 512)) << d;
+    }
+}
+
+namespace {
+
+/// The first `count` samples of one pixel of a sampler of `seq`: a 1D request, then 2D requests.
+std::vector<std::vector<float>> samplerCoordinates(SampleSequence seq, uint64_t pixel, uint32_t count, int requests2D) {
+    std::vector<std::vector<float>> out;
+    for (uint32_t i = 0; i < count; ++i) {
+        Sampler s(11, pixel, i, SamplePattern{seq, count, true});
+        std::vector<float> c{s.get1D()};
+        for (int r = 0; r < requests2D; ++r) {
+            const vec2 p = s.get2D();
+            c.push_back(p.x);
+            c.push_back(p.y);
+        }
+        out.push_back(c);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(SampleSequences, HighDimSobolIsJointlyStratifiedAcrossRequests) {
+    // highdimsobol's dimensions 0 (a 1D request) and 1 (the next 2D request's x) are Sobol's first
+    // two, a (0, 8, 2)-net over 256 samples after Owen scrambling: every 2^a × 2^(8−a) grid holds one
+    // point per cell. `sobol`'s padded requests are stratified only within a request: across two
+    // requests the same check fails (the comparison this sampler exists for).
+    for (uint64_t pixel : {0ull, 77ull}) {
+        const auto c = samplerCoordinates(SampleSequence::HighDimSobol, pixel, 256, 20);
+        std::vector<vec2> across;
+        for (const auto& v : c) across.push_back(vec2(v[0], v[1]));
+        for (int a = 0; a <= 8; ++a) EXPECT_TRUE(eachCellOnce(across, size_t(1) << a, size_t(1) << (8 - a))) << a;
+        // Every joint dimension alone, and the padded ones past the last, stay stratified.
+        for (size_t d = 0; d < c[0].size(); ++d) {
+            std::vector<float> v;
+            for (const auto& x : c) v.push_back(x[d]);
+            EXPECT_TRUE(eachStratumOnce(v, 256)) << "coordinate " << d;
+        }
+    }
+    const auto padded = samplerCoordinates(SampleSequence::Sobol, 0, 256, 1);
+    std::vector<vec2> across;
+    for (const auto& v : padded) across.push_back(vec2(v[0], v[1]));
+    bool allGrids = true;
+    for (int a = 0; a <= 8; ++a) allGrids = allGrids && eachCellOnce(across, size_t(1) << a, size_t(1) << (8 - a));
+    EXPECT_FALSE(allGrids);
+}
+
 TEST(SampleSequences, TheStratificationChecksRejectIndependentPoints) {
     const std::vector<vec2> p = points2D(independentPoint, 0, 64, 1);
     EXPECT_FALSE(eachCellOnce(p, 8, 8));
@@ -216,7 +306,8 @@ TEST(SampleSequences, PointsAreUniformAcrossPixelsAndIndependentAcrossDimensions
     // Chi-square of 20 000 pixels' values of one request in 10×10 cells of two consecutive
     // dimensions (the pair a path uses for two bounces): 99 degrees of freedom; its 1e-4 upper
     // quantile is 155.
-    for (SampleSequence seq : {SampleSequence::Stratified, SampleSequence::Multijitter, SampleSequence::Sobol}) {
+    for (SampleSequence seq : {SampleSequence::Stratified, SampleSequence::Multijitter, SampleSequence::Sobol,
+                               SampleSequence::HighDimSobol}) {
         std::vector<int> hits(100, 0);
         const int pixels = 20000;
         for (int px = 0; px < pixels; ++px) {
@@ -234,7 +325,8 @@ TEST(SampleSequences, PointsAreUniformAcrossPixelsAndIndependentAcrossDimensions
 TEST(SampleSequences, SamplerIsDeterministicAndIndependentKeepsItsStream) {
     Sampler a(5, 17, 3), b(5, 17, 3, SamplePattern{});
     for (int i = 0; i < 10; ++i) EXPECT_EQ(a.get1D(), b.get1D());  // images of earlier versions stay
-    for (SampleSequence seq : {SampleSequence::Stratified, SampleSequence::Multijitter, SampleSequence::Sobol}) {
+    for (SampleSequence seq : {SampleSequence::Stratified, SampleSequence::Multijitter, SampleSequence::Sobol,
+                               SampleSequence::HighDimSobol}) {
         Sampler x(5, 17, 3, SamplePattern{seq, 16, true}), y(5, 17, 3, SamplePattern{seq, 16, true});
         Sampler otherPixel(5, 18, 3, SamplePattern{seq, 16, true});
         for (int i = 0; i < 6; ++i) {

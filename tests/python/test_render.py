@@ -67,9 +67,9 @@ class RenderEqualsCLI(unittest.TestCase):
             iris.render(iris.load_file(SCENE, res=8), spp=1, wavelength_sampling="stratified")
 
     def test_samplers_equal_cli(self):
-        for sampler in ("stratified", "multijitter", "sobol"):
+        for sampler in ("stratified", "multijitter", "sobol", "highdimsobol"):
             r = self.compare(dict(spp=4, seed=2, sampler=sampler), ["--spp", "4", "--seed", "2", "--sampler", sampler])
-            self.assertEqual(r.metadata["iris.sampler"], sampler + ("" if sampler == "sobol" else "/4"))
+            self.assertEqual(r.metadata["iris.sampler"], sampler + ("/4" if sampler in ("stratified", "multijitter") else ""))
 
     def test_rgb_render_equals_cli(self):
         self.compare(dict(spp=2, seed=1, mode="rgb"), ["--spp", "2", "--seed", "1", "--mode", "rgb"])

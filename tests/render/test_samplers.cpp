@@ -58,7 +58,8 @@ double mse(const std::vector<float>& a, const std::vector<float>& b) {
     return s / double(a.size());
 }
 
-const char* const kSequences[] = {"independent", "stratified", "multijitter", "sobol"};
+const char* const kSequences[] = {"independent", "stratified", "multijitter", "sobol", "highdimsobol"};
+constexpr int kSequenceCount = 5;
 
 }  // namespace
 
@@ -71,6 +72,7 @@ TEST(Samplers, SceneSamplerChoosesTheSequence) {
     EXPECT_TRUE(mj.samplePattern.jitter);
     EXPECT_EQ(load(R"(<sampler type="sobol"/>)").samplePattern.sequence, SampleSequence::Sobol);
     EXPECT_EQ(load(R"(<sampler type="ldsampler"/>)").samplePattern.sequence, SampleSequence::Sobol);
+    EXPECT_EQ(load(R"(<sampler type="highdimsobol"/>)").samplePattern.sequence, SampleSequence::HighDimSobol);
     EXPECT_EQ(load(R"(<sampler type="halton"/>)").samplePattern.sequence, SampleSequence::Independent);
     EXPECT_FALSE(load(R"(<sampler type="stratified"><boolean name="jitter" value="false"/></sampler>)").samplePattern.jitter);
 }
@@ -135,8 +137,8 @@ TEST(Samplers, StratifiedPointsLowerTheErrorAtEqualSpp) {
         ref.sampler = "sobol";
         ref.seed = 1000;
         const std::vector<float> reference = render(scene, ref);
-        double err[4] = {0, 0, 0, 0};
-        for (int k = 0; k < 4; ++k)
+        double err[kSequenceCount] = {};
+        for (int k = 0; k < kSequenceCount; ++k)
             for (uint64_t seed = 1; seed <= 8; ++seed) {
                 RenderOptions opt;
                 opt.rgbMode = rgb;
@@ -146,9 +148,9 @@ TEST(Samplers, StratifiedPointsLowerTheErrorAtEqualSpp) {
                 opt.seed = seed;
                 err[k] += mse(render(scene, opt), reference);
             }
-        for (int k = 1; k < 4; ++k)
+        for (int k = 1; k < kSequenceCount; ++k)
             EXPECT_LT(err[k], 0.5 * err[0]) << kSequences[k] << (rgb ? " rgb" : " spectral") << ": " << err[k] << " vs independent " << err[0];
-        std::printf("[ samplers ] %s mode, MSE x 8 seeds at 16 spp: independent %.4g stratified %.4g multijitter %.4g sobol %.4g\n",
-                    rgb ? "rgb" : "spectral", err[0], err[1], err[2], err[3]);
+        std::printf("[ samplers ] %s mode, MSE x 8 seeds at 16 spp: independent %.4g stratified %.4g multijitter %.4g sobol %.4g "
+                    "highdimsobol %.4g\n", rgb ? "rgb" : "spectral", err[0], err[1], err[2], err[3], err[4]);
     }
 }

@@ -119,7 +119,7 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
     time_limit (seconds), colorspace (any colour space of the OCIO config, default lin_rec709),
     rgb_wavelengths (R, G, B in nm), uniform_wavelengths, wavelength_sampling ("hero", the default,
     or "independent": render --wavelength-sampling), sampler (None: the scene's <sampler>; or
-    "independent", "stratified", "multijitter", "sobol": render --sampler; an spp given is also the
+    "independent", "stratified", "multijitter", "sobol", "highdimsobol": render --sampler; an spp given is also the
     pattern size of stratified and multijitter, as --spp is). `progress`: a
     callable receiving the fraction done, or True for a bar on stderr. `spectral_bins` > 0 (spectral
     mode) also returns `spectral`: per pixel the spectral radiance averaged over that many equal
@@ -130,8 +130,8 @@ def render(scene: _iris.Scene, spp: int | None = None, mode: str = "spectral", s
         raise _iris.Error(f"mode: unknown '{mode}' (expected spectral, rgb or polarized)")
     if wavelength_sampling not in ("hero", "independent"):
         raise _iris.Error(f"wavelength_sampling: unknown '{wavelength_sampling}' (expected hero or independent)")
-    if sampler not in (None, "independent", "stratified", "multijitter", "sobol"):
-        raise _iris.Error(f"sampler: unknown sampler '{sampler}' (supported: independent, stratified, multijitter, sobol)")
+    if sampler not in (None, "independent", "stratified", "multijitter", "sobol", "highdimsobol"):
+        raise _iris.Error(f"sampler: unknown sampler '{sampler}' (supported: independent, stratified, multijitter, sobol, highdimsobol)")
     spp = -1 if spp is None else _count("spp", spp, 0)
     limit = 0.0
     if time_limit is not None:
