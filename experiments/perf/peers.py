@@ -16,7 +16,8 @@ two analytic spheres (rough plastic, glass) on a floor under an area light.
    ratio iris ÷ peer of whole-process wall times, so a drift of the machine's speed hits both sides
    of a ratio alike. Mean Rec.709 luminance of each output is printed as a check that the renderers
    draw the same scene.
-2. Equal time (`--equal-time`): each renderer with its best sampler available (iris `sobol`,
+2. Equal time (`--equal-time`): each renderer with its best sampler available (iris `highdimsobol`,
+   and `sobol`'s padded points for comparison,
    Mitsuba 0.6 `stratified` — the prebuilt 0.6 has no `ldsampler`/`sobol` plugin —, Tungsten's
    default `stratified_sampler`; iris also with `volpath`, whose shadow rays cross the thin glass
    sheet), at a reduced resolution, renders the sample counts of --et-spp and a long
@@ -61,10 +62,16 @@ PEER_LAYOUT = {"mts-rgb": "mitsuba06-rgb/mitsuba", "mts-s16": "mitsuba06-spec16/
 PEER_LABEL = {"mts-rgb": "Mitsuba 0.6 RGB", "mts-s16": "Mitsuba 0.6 spectral (16)", "tungsten": "Tungsten"}
 IRIS_VARIANTS = {"iris-s4": ["--spectral-samples", "4"], "iris-s16": ["--spectral-samples", "16"],
                  "iris-rgb": ["--mode", "rgb"]}
-# Part 2 adds iris's volumetric path tracer on the same scene: its shadow rays cross pass-through
-# lobes (thindielectric's transmission) with their weight where `path`, like Mitsuba's path tracers,
-# tests plain occlusion (materials/thindielectric.cpp) — the integrator a user would pick for that.
-EQUAL_TIME_IRIS = {"iris-s4": "path", "iris-s4-volpath": "volpath", "iris-rgb": "path"}
+# Part 2's iris runs: name -> (variant of IRIS_VARIANTS, integrator, sampler). iris's best sampler is
+# `highdimsobol` (the first 32 Sobol dimensions jointly); `iris-s4-sobol` keeps the padded `sobol`
+# points for comparison, which measures what the joint dimensions buy. It adds iris's volumetric
+# path tracer on the same scene: its shadow rays cross pass-through lobes (thindielectric's
+# transmission) with their weight where `path`, like Mitsuba's path tracers, tests plain occlusion
+# (materials/thindielectric.cpp) — the integrator a user would pick for that.
+EQUAL_TIME_IRIS = {"iris-s4": ("iris-s4", "path", "highdimsobol"),
+                   "iris-s4-volpath": ("iris-s4", "volpath", "highdimsobol"),
+                   "iris-rgb": ("iris-rgb", "path", "highdimsobol"),
+                   "iris-s4-sobol": ("iris-s4", "path", "sobol")}
 
 
 # ---------------------------------------------------------------- scene copies and commands
@@ -96,8 +103,9 @@ def command(name: str, exe: str, scene: Path, out: Path, threads: int, extra=())
     """The command line of one renderer: output to `out` (iris: EXR; Mitsuba: PFM through the film's
     fileFormat, set in the scene copy; Tungsten: the PFM its scene names, in folder `out`)."""
     if name.startswith("iris"):
+        variant = EQUAL_TIME_IRIS[name][0] if name in EQUAL_TIME_IRIS else name
         return [exe, str(scene), "--threads", str(threads), "--quiet", "--no-png", "-o", str(out),
-                *IRIS_VARIANTS[name.removesuffix("-volpath")], *extra]
+                *IRIS_VARIANTS[variant], *extra]
     if name.startswith("mts"):
         return [exe, "-p", str(threads), "-q", "-o", str(out), *extra, str(scene)]
     return [exe, "-t", str(threads), "-d", str(out), *extra, str(scene)]
@@ -242,10 +250,11 @@ def equal_time_run(args, name, exe, scene, spp, work, reference):
     sample stream independent of the runs': iris and Tungsten with another seed; Mitsuba 0.6, which
     has no seed parameter, with the `independent` sampler instead of `stratified`."""
     mts_sampler = ("independent" if reference else "stratified") if name.startswith("mts") else None
+    iris = EQUAL_TIME_IRIS.get(name)
     files = prepare(args, scene, work, width=args.et_width, height=args.et_height, spp=spp, sampler=mts_sampler,
-                    integrator=EQUAL_TIME_IRIS.get(name))
+                    integrator=iris[1] if iris else None)
     seed = "7" if reference else "1"
-    extra = {"iris": ["--sampler", "sobol", "--seed", seed], "tungsten": ["--seed", seed]}.get(name.split("-")[0], [])
+    extra = ["--sampler", iris[2], "--seed", seed] if iris else ["--seed", seed] if name == "tungsten" else []
     out = out_for(name, scene, work, f"et{spp}")
     sec, rc = run_wall(command(name, exe, scene_for(name, files), out, args.threads, extra), work)
     return sec, rc, luminance(output_file(name, out, scene))

@@ -13,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from iris_experiments import exr  # noqa: E402
 
 
-NOISE_OF_SAMPLER = {"independent": 1.0, "stratified": 0.8, "multijitter": 0.7, "sobol": 0.5}
+NOISE_OF_SAMPLER = {"independent": 1.0, "stratified": 0.8, "multijitter": 0.7, "sobol": 0.5, "highdimsobol": 0.4}
 
 
 def main(argv):

@@ -132,6 +132,25 @@ class PeersTest(unittest.TestCase):
         self.assertIn("÷ Mitsuba 0.6 RGB", md)
         self.assertNotIn("÷ Tungsten", md)
 
+    def test_equal_time_runs_iris_with_each_sampler_and_the_padded_one_for_comparison(self):
+        (self.dir / "mitsuba").mkdir()
+        (self.dir / "mitsuba" / "s.xml").write_text(XML)
+        (self.dir / "tungsten").mkdir()
+        (self.dir / "tungsten" / "s.json").write_text(JSON)
+        iris = script(self.dir / "iris", HERE / "fake_render.py")
+        out = self.dir / "out"
+        r = subprocess.run([sys.executable, str(HERE.parent / "perf" / "peers.py"), "--iris", str(iris),
+                            "--scenes", str(self.dir), "--meshes", str(self.dir), "--scene-list", "s",
+                            "--no-timing", "--equal-time", "--et-spp", "4,16", "--ref-spp", "64", "--out", str(out)],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        et = json.loads((out / "peers.json").read_text())["equal_time"]["s"]
+        self.assertEqual(sorted(et), ["iris-rgb", "iris-s4", "iris-s4-sobol", "iris-s4-volpath"])
+        # The stand-in's noise is 0.4 (highdimsobol) against 0.5 (sobol) of the same draws: the
+        # padded variant's relMSE must come out (0.5 / 0.4)² times higher, so each ran its sampler.
+        for a, b in zip(et["iris-s4-sobol"]["rows"], et["iris-s4"]["rows"]):
+            self.assertGreater(a["relmse"], 1.2 * b["relmse"])
+
 
 if __name__ == "__main__":
     unittest.main()
