@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Which sampler? The four sample sequences (render --sampler: independent, stratified, multijitter,
-sobol; docs/rendering.md "Samplers") on the default scene, the thin-film spheres, the thesis
+"""Which sampler? The five sample sequences (render --sampler: independent, stratified, multijitter,
+sobol, highdimsobol; docs/rendering.md "Samplers") on the default scene, the thin-film spheres, the thesis
 scene pair and the bunny: error against wall time with several seeds, the variance reduction of
 each sampler at equal spp, and the error at equal time, all against a converged reference
 (issue 17, item 3).
@@ -26,7 +26,7 @@ SCENES = {
     "thesis_pair": SceneSpec("experiments/perf/scenes/thesis_pair.xml", note="the thesis models' scene pair"),
     "bunny": SceneSpec("experiments/perf/scenes/bunny.xml", note="the Stanford bunny"),
 }
-SAMPLERS = ["independent", "stratified", "multijitter", "sobol"]
+SAMPLERS = ["independent", "stratified", "multijitter", "sobol", "highdimsobol"]
 BASELINE = "independent"   # the renderer's and Mitsuba's default
 FULL = {"res": 64, "ref_spp": 2048, "ref_seeds": 2,
         "convergence": {"spp_levels": [2 ** k for k in range(1, 8)], "seeds": [1, 2, 3, 4], "time_limit": 4.0}}
@@ -38,8 +38,9 @@ QUICK = {"res": 16, "ref_spp": 64, "ref_seeds": 2,
 class SamplerEfficiency(ConvergenceExperiment):
     name = "sampler_efficiency"
     title = "Samplers: error at equal samples and at equal time"
-    question = ("Question: how much do stratified, multi-jittered and Owen-scrambled Sobol points lower the error "
-                "of a render against independent points, at equal samples per pixel and at equal wall time?")
+    question = ("Question: how much do stratified, multi-jittered and Owen-scrambled Sobol points (padded per request, "
+                "and joint over the first 32 dimensions) lower the error of a render against independent points, at "
+                "equal samples per pixel and at equal wall time?")
     scene_specs = SCENES
     FULL, QUICK = FULL, QUICK
 

@@ -16,8 +16,8 @@ two analytic spheres (rough plastic, glass) on a floor under an area light.
    ratio iris ÷ peer of whole-process wall times, so a drift of the machine's speed hits both sides
    of a ratio alike. Mean Rec.709 luminance of each output is printed as a check that the renderers
    draw the same scene.
-2. Equal time (`--equal-time`): each renderer with its best sampler available (iris `highdimsobol`,
-   and `sobol`'s padded points for comparison,
+2. Equal time (`--equal-time`): each renderer with its best sampler available (iris `sobol` and
+   `highdimsobol`, each scene's best counting,
    Mitsuba 0.6 `stratified` — the prebuilt 0.6 has no `ldsampler`/`sobol` plugin —, Tungsten's
    default `stratified_sampler`; iris also with `volpath`, whose shadow rays cross the thin glass
    sheet), at a reduced resolution, renders the sample counts of --et-spp and a long
@@ -62,16 +62,18 @@ PEER_LAYOUT = {"mts-rgb": "mitsuba06-rgb/mitsuba", "mts-s16": "mitsuba06-spec16/
 PEER_LABEL = {"mts-rgb": "Mitsuba 0.6 RGB", "mts-s16": "Mitsuba 0.6 spectral (16)", "tungsten": "Tungsten"}
 IRIS_VARIANTS = {"iris-s4": ["--spectral-samples", "4"], "iris-s16": ["--spectral-samples", "16"],
                  "iris-rgb": ["--mode", "rgb"]}
-# Part 2's iris runs: name -> (variant of IRIS_VARIANTS, integrator, sampler). iris's best sampler is
-# `highdimsobol` (the first 32 Sobol dimensions jointly); `iris-s4-sobol` keeps the padded `sobol`
-# points for comparison, which measures what the joint dimensions buy. It adds iris's volumetric
-# path tracer on the same scene: its shadow rays cross pass-through lobes (thindielectric's
-# transmission) with their weight where `path`, like Mitsuba's path tracers, tests plain occlusion
-# (materials/thindielectric.cpp) — the integrator a user would pick for that.
-EQUAL_TIME_IRIS = {"iris-s4": ("iris-s4", "path", "highdimsobol"),
-                   "iris-s4-volpath": ("iris-s4", "volpath", "highdimsobol"),
-                   "iris-rgb": ("iris-rgb", "path", "highdimsobol"),
-                   "iris-s4-sobol": ("iris-s4", "path", "sobol")}
+# Part 2's iris runs: name -> (variant of IRIS_VARIANTS, integrator, sampler). iris has two Sobol
+# samplers and neither is best everywhere: `sobol` pads independently scrambled 1D/2D sets,
+# `highdimsobol` takes the first 32 Sobol dimensions jointly (lower error on the meshes under sky
+# light, higher on the caustics of the spheres), so both run and each scene's best counts. The
+# volumetric path tracer runs on the same scene: its shadow rays cross pass-through lobes
+# (thindielectric's transmission) with their weight where `path`, like Mitsuba's path tracers,
+# tests plain occlusion (materials/thindielectric.cpp) — the integrator a user would pick for that.
+EQUAL_TIME_IRIS = {"iris-s4": ("iris-s4", "path", "sobol"),
+                   "iris-s4-volpath": ("iris-s4", "volpath", "sobol"),
+                   "iris-rgb": ("iris-rgb", "path", "sobol"),
+                   "iris-s4-highdim": ("iris-s4", "path", "highdimsobol"),
+                   "iris-rgb-highdim": ("iris-rgb", "path", "highdimsobol")}
 
 
 # ---------------------------------------------------------------- scene copies and commands

@@ -341,12 +341,12 @@ class ExperimentEndToEndTest(TempDirTest):
         self.assertEqual(ref_meta["iris.spp"], "32")  # 2 seeds x 16 spp merged
 
     def test_sampler_efficiency_reports_the_variance_reduction(self):
-        # The fake renderer scales its noise by 0.8, 0.7, 0.5 for stratified, multijitter, sobol:
-        # relMSE falls by 1/0.64, 1/0.49, 1/0.25 (within the reference's own noise).
+        # The fake renderer scales its noise by 0.8, 0.7, 0.5, 0.4 for stratified, multijitter, sobol,
+        # highdimsobol: relMSE falls by 1/0.64, 1/0.49, 1/0.25, 1/0.16 (within the reference's own noise).
         out, _ = self.run_experiment("sampler_efficiency")
         text = (out / "report.md").read_text()
         self.assertIn("Variance reduction at equal spp", text)
-        for name, factor in (("stratified", 1 / 0.64), ("multijitter", 1 / 0.49), ("sobol", 4.0)):
+        for name, factor in (("stratified", 1 / 0.64), ("multijitter", 1 / 0.49), ("sobol", 4.0), ("highdimsobol", 1 / 0.16)):
             line = next(l for l in text.splitlines() if l.startswith(f"- ") and f": {name} lowers relMSE" in l)
             lo, hi = (float(x) for x in line.split("by a factor ")[1].split(" over")[0].split(" to "))
             self.assertGreater(lo, 0.8 * factor, line)
