@@ -251,6 +251,29 @@ TEST(SampleSequences, SobolDimensionsMatchTheTwoKnownOnesAndAreEachStratified) {
     }
 }
 
+TEST(SampleSequences, OnlySobolsFirstTwoDimensionsAreAZeroNetAtEverySize) {
+    // The trade-off behind highdimsobol (docs/rendering.md, Samplers): its 2D requests get later
+    // pairs of dimensions, each with t > 0 at some size 2^m, where sobol's get dimensions 0 and 1.
+    const auto isZeroNet = [](int d1, int d2, int m) {
+        const uint32_t n = 1u << m;
+        for (int a = 0; a <= m; ++a) {
+            std::vector<int> hits(n, 0);
+            for (uint32_t i = 0; i < n; ++i) {
+                const uint32_t x = a ? sobolPointBits(i, d1) >> (32 - a) : 0u;
+                const uint32_t y = a < m ? sobolPointBits(i, d2) >> (32 - (m - a)) : 0u;
+                if (++hits[(x << (m - a)) | y] > 1) return false;
+            }
+        }
+        return true;
+    };
+    for (int d1 = 0; d1 < kSobolDimensions; ++d1)
+        for (int d2 = d1 + 1; d2 < kSobolDimensions; ++d2) {
+            bool always = true;
+            for (int m = 1; m <= 9 && always; ++m) always = isZeroNet(d1, d2, m);
+            EXPECT_EQ(always, d1 == 0 && d2 == 1) << d1 << ", " << d2;
+        }
+}
+
 namespace {
 
 /// The first `count` samples of one pixel of a sampler of `seq`: a 1D request, then 2D requests.
