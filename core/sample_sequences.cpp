@@ -161,9 +161,12 @@ vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensio
     const PatternIndex p = patternIndex(sampleIndex, patternSize, dimensionSeed);
     // Kensler 2013, listing 4: an m×k grid of cells (m columns, k rows, m·k >= n) whose points are
     // also stratified in m·k strata along x and along y: x = (column + (s_y + j_x)/k)/m, y = (row +
-    // (s_x + j_y)/m)/k with s_x, s_y permutations shared by each column and each row.
+    // (s_x + j_y)/m)/k with s_x, s_y permutations shared by each column and each row. The cell is
+    // drawn from all m·k cells, not from the first n: where m·k > n (n = 8, 32, 128, ...) Kensler's
+    // listing fills the last row only partly, which leaves the same corner unsampled in every round
+    // (a bias); a permutation of all cells keeps each point uniform and each cell used at most once.
     const uint32_t m = ceilSqrt(patternSize), k = (patternSize + m - 1) / m;
-    const uint32_t s = permuteIndex(p.index, patternSize, p.roundSeed);
+    const uint32_t s = permuteIndex(p.index, m * k, p.roundSeed);
     const uint32_t column = s % m, row = s / m;
     const uint32_t sx = permuteIndex(column, m, mix64(p.roundSeed + 1)), sy = permuteIndex(row, k, mix64(p.roundSeed + 2));
     return vec2(inStratum(uint64_t(column) * k + sy, jitter.x, uint64_t(m) * k),
