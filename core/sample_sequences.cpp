@@ -78,7 +78,7 @@ constexpr std::array<std::array<uint32_t, 256>, 4> sobol1ReversedByteTables() {
 
 constexpr std::array<std::array<uint32_t, 256>, 4> kSobol1Reversed = sobol1ReversedByteTables();
 
-/// reverseBits32(sobolBits(index, 1)) by four table reads.
+/// reverseBits32(sobolPointBits(index, 1)) by four table reads (core/sobol_directions.h).
 uint32_t sobol1Reversed(uint32_t index) {
     return kSobol1Reversed[0][index & 0xffu] ^ kSobol1Reversed[1][(index >> 8) & 0xffu] ^
            kSobol1Reversed[2][(index >> 16) & 0xffu] ^ kSobol1Reversed[3][index >> 24];
@@ -132,14 +132,6 @@ uint32_t permuteIndex(uint32_t i, uint32_t n, uint64_t seed) {
     return uint32_t((uint64_t(i) + mix64(seed ^ 0xa0761d6478bd642full) % n) % n);
 }
 
-uint32_t sobolBits(uint32_t index, int dimension) {
-    if (dimension == 0) return reverseBits32(index);  // v_k = 2^−k: the van der Corput sequence
-    uint32_t x = 0;
-    for (int k = 0; index; ++k, index >>= 1)
-        if (index & 1u) x ^= kSobol1[size_t(k)];
-    return x;
-}
-
 uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
     // Applied to the bit-reversed value so that each bit is flipped by a hash of the bits above it.
     return reverseBits32(scrambleReversed(reverseBits32(x), seed));
@@ -173,8 +165,8 @@ vec2 multijitter2D(uint64_t sampleIndex, uint32_t patternSize, uint64_t dimensio
                 inStratum(uint64_t(row) * m + sx, jitter.y, uint64_t(m) * k));
 }
 
-// The points are nestedUniformScramble(sobolBits(index, d), seed_d) of the shuffled index, written
-// with the reversals cancelled: sobolBits(index, 0) is reverseBits32(index), so its scramble is
+// The points are nestedUniformScramble(sobolPointBits(index, d), seed_d) of the shuffled index, written
+// with the reversals cancelled: sobolPointBits(index, 0) is reverseBits32(index), so its scramble is
 // reverseBits32(scrambleReversed(index, ·)); dimension 1 is read reversed from byte tables. Same
 // bits as the plain composition (tests/core/test_sample_sequences.cpp), at a fraction of its cost.
 float sobol1DReversed(uint32_t reversedSampleIndex, uint64_t dimensionSeed) {

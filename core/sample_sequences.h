@@ -46,9 +46,6 @@ constexpr uint32_t reverseBits32(uint32_t x) {
     return (x >> 16) | (x << 16);
 }
 
-/// Bits of the Sobol point of `index` in dimension 0 (van der Corput) or 1, as a 32-bit fraction.
-uint32_t sobolBits(uint32_t index, int dimension);
-
 /// Owen scrambling of a 32-bit fraction by the hashed nested uniform scramble (Burley 2020, §3–4).
 uint32_t nestedUniformScramble(uint32_t x, uint32_t seed);
 

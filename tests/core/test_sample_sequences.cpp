@@ -76,23 +76,23 @@ TEST(SampleSequences, SobolMatchesTheKnownFirstPoints) {
     const double d0[] = {0, 0.5, 0.25, 0.75, 0.125, 0.625, 0.375, 0.875};
     const double d1[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
     for (uint32_t i = 0; i < 8; ++i) {
-        EXPECT_EQ(sobolBits(i, 0) * 0x1p-32, d0[i]) << i;
-        EXPECT_EQ(sobolBits(i, 1) * 0x1p-32, d1[i]) << i;
+        EXPECT_EQ(sobolPointBits(i, 0) * 0x1p-32, d0[i]) << i;
+        EXPECT_EQ(sobolPointBits(i, 1) * 0x1p-32, d1[i]) << i;
     }
 }
 
 namespace {
 
 /// sobol2D as core/sample_sequences.h defines it, composed plainly: the shuffled index
-/// nestedUniformScramble(i, s0), each dimension's sobolBits Owen-scrambled with its own seed (s0
+/// nestedUniformScramble(i, s0), each dimension's sobolPointBits Owen-scrambled with its own seed (s0
 /// and s1 the low and high halves of the request's seed, s2 the low half of its SplitMix64);
 /// `wrong` puts dimension 0's bits in both coordinates (a definition the fast path must not match).
 vec2 plainSobol2D(uint64_t i, uint64_t seed, bool wrong = false) {
     const auto part = [&](int k) { return k == 0 ? uint32_t(seed) : k == 1 ? uint32_t(seed >> 32) : uint32_t(mix64(seed)); };
     const uint32_t index = nestedUniformScramble(uint32_t(i), part(0));
     const auto unit = [](uint32_t b) { return std::min(kOneMinusEpsilon, float(b) * 0x1p-32f); };
-    return vec2(unit(nestedUniformScramble(sobolBits(index, 0), part(1))),
-                unit(nestedUniformScramble(sobolBits(index, wrong ? 0 : 1), part(2))));
+    return vec2(unit(nestedUniformScramble(sobolPointBits(index, 0), part(1))),
+                unit(nestedUniformScramble(sobolPointBits(index, wrong ? 0 : 1), part(2))));
 }
 
 }  // namespace
@@ -261,11 +261,8 @@ TEST(SampleSequences, JoeKuoRowsArePrimitivePolynomialsWithValidInitialNumbers) 
     EXPECT_NE(order, 3u);
 }
 
-TEST(SampleSequences, SobolDimensionsMatchTheTwoKnownOnesAndAreEachStratified) {
-    for (uint32_t i = 0; i < 1024; ++i) {
-        ASSERT_EQ(sobolPointBits(i, 0), sobolBits(i, 0)) << i;  // van der Corput
-        ASSERT_EQ(sobolPointBits(i, 1), sobolBits(i, 1)) << i;  // Joe & Kuo's row 2 is x + 1
-    }
+TEST(SampleSequences, SobolDimensionZeroIsVanDerCorputAndEachDimensionIsStratified) {
+    for (uint32_t i = 0; i < 1024; ++i) ASSERT_EQ(sobolPointBits(i, 0), reverseBits32(i)) << i;  // van der Corput
     // Every dimension alone is a (0, m, 1)-net: its first 2^m points fill 2^m strata once each.
     for (int d = 0; d < kSobolDimensions; ++d) {
         std::vector<float> v;
