@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/output_file.h"
 #include "core/quadrature.h"
 #include "materials/fresnel.h"
 
@@ -469,7 +470,7 @@ std::string roughTablesCacheDir() {
     if (const char* d = std::getenv("IRIS_CACHE_DIR"); d && *d) return d;
     if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/iris";
     if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/iris";
-    return (std::filesystem::temp_directory_path() / "iris-cache").string();
+    return temporaryFolder() + "/iris-cache";  // a bad $TMPDIR: the cache write warns with this path
 }
 
 std::string roughTablesCachePath(MicrofacetType type, const RoughTableResolution& res) {

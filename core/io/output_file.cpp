@@ -47,6 +47,11 @@ void checkOutputPath(const std::string& path, std::string_view option) {
         fail(option, " ", path, ": cannot create a file in the folder ", folder, ": ", std::strerror(err));
 }
 
+std::string temporaryFolder() {
+    const char* tmp = std::getenv("TMPDIR");
+    return tmp && *tmp ? tmp : "/tmp";
+}
+
 std::vector<std::string> fallbackPaths(const std::string& path) {
     const std::string name = strCat("iris-rescued-", ::getpid(), "-", fs::path(path).filename().string());
     std::vector<std::string> out;
@@ -54,8 +59,7 @@ std::vector<std::string> fallbackPaths(const std::string& path) {
     const fs::path cwd = fs::current_path(ec);
     const bool sameFolder = fs::equivalent(cwd, folderOf(path), gone) && !gone;  // a removed folder is not the same
     if (!ec && !sameFolder) out.push_back((cwd / name).string());
-    const char* tmp = std::getenv("TMPDIR");
-    out.push_back((fs::path(tmp && *tmp ? tmp : "/tmp") / name).string());
+    out.push_back((fs::path(temporaryFolder()) / name).string());
     return out;
 }
 

@@ -21,6 +21,11 @@ namespace iris {
 /// `path` cannot be written as described above. `option` names where the path came from.
 void checkOutputPath(const std::string& path, std::string_view option);
 
+/// The folder for temporary and cache files: $TMPDIR when set and not empty, else /tmp. Unlike
+/// std::filesystem::temp_directory_path it does not throw for a TMPDIR that is not a folder: the
+/// write there fails instead, with an error that names the path.
+std::string temporaryFolder();
+
 /// Where writeWithFallback tries next, in order: the current folder, then $TMPDIR (or /tmp), each as
 /// "iris-rescued-<pid>-<file name>" (the current folder is skipped when it is the path's own folder).
 std::vector<std::string> fallbackPaths(const std::string& path);

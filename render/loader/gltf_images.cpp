@@ -3,13 +3,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <initializer_list>
 #include <fstream>
 
 #include "core/io/image.h"
+#include "core/io/output_file.h"
 #include "core/xml/xml_values.h"
 #include "core/srgb_transfer.h"
 
@@ -46,9 +49,9 @@ std::string extensionOf(const std::vector<unsigned char>& b) {
 /// instead of trying every reader on a name without one.
 Image readEncoded(const std::vector<unsigned char>& bytes, const std::string& what) {
     const std::string ext = extensionOf(bytes);
-    std::string tmpl = (std::filesystem::temp_directory_path() / ("iris-gltf-image-XXXXXX" + ext)).string();
+    std::string tmpl = (std::filesystem::path(temporaryFolder()) / ("iris-gltf-image-XXXXXX" + ext)).string();
     const int fd = mkstemps(tmpl.data(), int(ext.size()));
-    if (fd < 0) fail(what, ": cannot create a temporary file to decode the image");
+    if (fd < 0) fail(what, ": cannot create a temporary file in '", temporaryFolder(), "' ($TMPDIR) to decode the image: ", std::strerror(errno));
     close(fd);
     struct Remove {
         std::string p;

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -239,6 +240,33 @@ TEST(RoughPlasticTables, CacheDirectoryFromEnvironment) {
     if (xdg && *xdg) EXPECT_EQ(roughTablesCacheDir(), std::string(xdg) + "/iris");
     else if (home && *home) EXPECT_EQ(roughTablesCacheDir(), std::string(home) + "/.cache/iris");
     if (old) ::setenv("IRIS_CACHE_DIR", saved.c_str(), 1);
+}
+
+TEST(RoughPlasticTables, ABadTmpdirGivesAWarningNotAnError) {
+    // Without IRIS_CACHE_DIR, XDG_CACHE_HOME and HOME the cache goes under $TMPDIR. One that is not
+    // a folder (here a plain file) made std::filesystem::temp_directory_path throw, and the render
+    // stop with "filesystem error: temp_directory_path"; now the cache path names it and only the
+    // write fails, with a warning.
+    const std::string file = (std::filesystem::temp_directory_path() / ("iris_tmpdir_file_" + std::to_string(::getpid()))).string();
+    std::ofstream(file) << "not a folder";
+    const char* names[] = {"IRIS_CACHE_DIR", "XDG_CACHE_HOME", "HOME", "TMPDIR"};
+    std::vector<std::pair<std::string, std::optional<std::string>>> saved;
+    for (const char* n : names) {
+        const char* v = std::getenv(n);
+        saved.emplace_back(n, v ? std::optional<std::string>(v) : std::nullopt);
+        ::unsetenv(n);
+    }
+    ::setenv("TMPDIR", file.c_str(), 1);
+    std::string dir;
+    EXPECT_NO_THROW(dir = roughTablesCacheDir());
+    EXPECT_EQ(dir, file + "/iris-cache");
+    RoughTableResolution res;
+    res.nEta = 4, res.nAlpha = 4, res.nMu = 8;
+    RoughTransmittanceTables t;
+    EXPECT_NO_THROW(t = loadOrBuildRoughTables(roughTablesCachePath(MicrofacetType::GGX, res), MicrofacetType::GGX, res));
+    EXPECT_FALSE(t.ext.empty());  // built, not cached
+    for (const auto& [n, v] : saved) v ? ::setenv(n.c_str(), v->c_str(), 1) : ::unsetenv(n.c_str());
+    std::filesystem::remove(file);
 }
 
 TEST(RoughPlasticTables, CollapsedLinesEqualGeneralInterpolation) {

@@ -7,8 +7,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <typeinfo>
+
+#include <unistd.h>
 
 #include "core/error.h"
 #include "core/source_tree.h"
@@ -97,6 +100,27 @@ TEST(GltfLoader, AlphaMaskCutsTheTexturedQuad) {
     // KHR_texture_transform scale 2: uv (0.3, 0.1) → (0.6, 0.2), the top-right texel (alpha 40).
     EXPECT_EQ(opacityAt(vec2(0.3f, 0.1f)), 0.0f);
     EXPECT_GT(opacityAt(vec2(0.1f, 0.1f)), 0.0f);  // top-left, red, opaque
+}
+
+TEST(GltfLoader, ABadTmpdirIsNamedWhenAnEmbeddedImageIsDecoded) {
+    // An embedded image is decoded through a temporary file under $TMPDIR. A TMPDIR that is not a
+    // folder made std::filesystem::temp_directory_path throw ("filesystem error:
+    // temp_directory_path", naming neither the scene nor the variable); now the error names both.
+    const std::string file = (std::filesystem::temp_directory_path() / ("iris_gltf_tmpdir_" + std::to_string(::getpid()))).string();
+    std::ofstream(file) << "not a folder";
+    const char* old = std::getenv("TMPDIR");
+    const std::optional<std::string> saved = old ? std::optional<std::string>(old) : std::nullopt;
+    ::setenv("TMPDIR", file.c_str(), 1);
+    std::string message;
+    try {
+        loadSceneFile(asset("textured.gltf"), {{"res", "32"}, {"spp", "8"}});
+    } catch (const Error& e) {
+        message = e.what();
+    }
+    saved ? ::setenv("TMPDIR", saved->c_str(), 1) : ::unsetenv("TMPDIR");
+    std::filesystem::remove(file);
+    EXPECT_NE(message.find("textured.gltf"), std::string::npos) << message;
+    EXPECT_NE(message.find("'" + file + "' ($TMPDIR)"), std::string::npos) << message;
 }
 
 TEST(GltfLoader, ASceneWithoutLightsGetsTheDefaultEnvironment) {
