@@ -20,15 +20,22 @@
 namespace iris::fuzz {
 
 /// A private scratch folder for this process (readers that only take paths get their input as a
-/// file in it).
+/// file in it), removed when the process exits normally; a crash keeps it with the input.
 inline const std::filesystem::path& scratchDir() {
-    static const std::filesystem::path dir = [] {
+    struct Scratch {
+        std::filesystem::path dir;
+        ~Scratch() {
+            std::error_code ec;
+            std::filesystem::remove_all(dir, ec);
+        }
+    };
+    static const Scratch scratch = [] {
         const char* t = std::getenv("TMPDIR");
         std::filesystem::path d = std::filesystem::path(t && *t ? t : "/tmp") / ("iris_fuzz_" + std::to_string(::getpid()));
         std::filesystem::create_directories(d);
-        return d;
+        return Scratch{d};
     }();
-    return dir;
+    return scratch.dir;
 }
 
 /// Write the input to <scratch>/<name> (overwritten on every call) and return its path.
