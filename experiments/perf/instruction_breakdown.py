@@ -42,7 +42,7 @@ sys.path.insert(0, str(HERE))
 
 from iris_experiments.report import machine_info, markdown_table, provenance  # noqa: E402
 from iris_experiments.tools import REPO  # noqa: E402
-from peers import prepare  # noqa: E402
+from peers import PEER_LAYOUT, command, out_for, prepare, scene_for  # noqa: E402
 
 # (label, function name prefix as callgrind_annotate prints it, nesting level). The loop row is the
 # denominator of the shares.
@@ -135,27 +135,28 @@ def film_size(xml: Path) -> tuple[int, int]:
     return int(w.group(1)), int(h.group(1))
 
 
+# The runs per scene: (label, peers.py renderer name, rows of the table). Command lines, scene
+# copies and output names are peers.py's (command, scene_for, out_for), run with one thread.
+RUNS = [("iris spectral N = 4", "iris-s4", IRIS_ROWS), ("iris RGB", "iris-rgb", IRIS_ROWS),
+        ("Mitsuba 0.6 RGB", "mts-rgb", MITSUBA_ROWS)]
+
+
 def measure_scene(args, scene: str, work: Path) -> dict:
     files = prepare(args, scene, work, spp=args.spp)
     w, h = film_size(files["xml"])
     samples = w * h * args.spp
     result = {"scene": scene, "width": w, "height": h, "spp": args.spp, "camera_samples": samples, "runs": {}}
-    runs = {"iris spectral N = 4": [args.iris, str(files["xml"]), "--spectral-samples", "4"],
-            "iris RGB": [args.iris, str(files["xml"]), "--mode", "rgb"]}
-    for name, cmd in runs.items():
-        prof = work / f"cg_{scene}_{len(result['runs'])}.out"
-        callgrind([*cmd, "--threads", "1", "--quiet", "--no-png", "-o", str(work / f"{scene}.exr")], prof, work)
+    exes = {"iris-s4": args.iris, "iris-rgb": args.iris, "mts-rgb": args.mts_rgb}
+    for label, name, rows in RUNS:
+        if not exes[name]:
+            continue
+        prof = work / f"cg_{scene}_{name}.out"
+        cmd = command(name, exes[name], scene_for(name, files), out_for(name, scene, work, "instr"), threads=1)
+        callgrind(cmd, prof, work)
         total, costs = inclusive_costs(prof)
-        rows, loop = breakdown(IRIS_ROWS, total, costs, samples)
-        result["runs"][name] = {"total": total, "loop": loop, "rows": rows}
-        print(f"instruction_breakdown: {scene}, {name}: {loop / samples:,.0f} loop instructions per sample", file=sys.stderr)
-    if args.mts_rgb:
-        prof = work / f"cg_{scene}_mts.out"
-        callgrind([args.mts_rgb, "-p", "1", "-q", "-o", str(work / f"{scene}_mts.pfm"), str(files["mts_xml"])], prof, work)
-        total, costs = inclusive_costs(prof)
-        rows, loop = breakdown(MITSUBA_ROWS, total, costs, samples)
-        result["runs"]["Mitsuba 0.6 RGB"] = {"total": total, "loop": loop, "rows": rows}
-        print(f"instruction_breakdown: {scene}, Mitsuba 0.6 RGB: {loop / samples:,.0f} loop instructions per sample", file=sys.stderr)
+        table, loop = breakdown(rows, total, costs, samples)
+        result["runs"][label] = {"total": total, "loop": loop, "rows": table}
+        print(f"instruction_breakdown: {scene}, {label}: {loop / samples:,.0f} loop instructions per sample", file=sys.stderr)
     return result
 
 
@@ -222,7 +223,7 @@ def main(argv=None) -> None:
         if not shutil.which(tool):
             sys.exit(f"instruction_breakdown: `{tool}` not found (Debian package valgrind)")
     if not args.mts_rgb and args.peers_bin:
-        args.mts_rgb = str(Path(args.peers_bin) / "mitsuba06-rgb" / "mitsuba")
+        args.mts_rgb = str(Path(args.peers_bin) / PEER_LAYOUT["mts-rgb"])
     if args.mts_rgb and not Path(args.mts_rgb).is_file():
         print(f"instruction_breakdown: Mitsuba 0.6 not found at {args.mts_rgb}: skipped", file=sys.stderr)
         args.mts_rgb = None
