@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -227,6 +228,9 @@ def main(argv=None) -> None:
     if args.mts_rgb and not Path(args.mts_rgb).is_file():
         print(f"instruction_breakdown: Mitsuba 0.6 not found at {args.mts_rgb}: skipped", file=sys.stderr)
         args.mts_rgb = None
+    # The renderers run in a scratch folder: name them by absolute paths (as peers.renderers does).
+    args.iris = os.path.abspath(args.iris)
+    args.mts_rgb = args.mts_rgb and os.path.abspath(args.mts_rgb)
     prov = provenance(("experiments/results", "experiments/perf/results"))
     started = time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime())
     with tempfile.TemporaryDirectory(prefix="iris_instr_") as tmp:

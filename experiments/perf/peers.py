@@ -160,11 +160,13 @@ def relmse(img: np.ndarray, ref: np.ndarray) -> float:
 # ---------------------------------------------------------------- part 1: side by side
 
 def renderers(args) -> dict[str, str]:
-    found = {v: args.iris for v in IRIS_VARIANTS}
+    """The renderers to run, as absolute paths: they run in the scratch folder of the scene copies,
+    where a path relative to the caller's folder would name nothing."""
+    found = {v: os.path.abspath(args.iris) for v in IRIS_VARIANTS}
     for name, rel in PEER_LAYOUT.items():
         exe = getattr(args, name.replace("-", "_")) or (str(Path(args.peers_bin) / rel) if args.peers_bin else None)
         if exe and os.access(exe, os.X_OK):
-            found[name] = exe
+            found[name] = os.path.abspath(exe)
         else:
             print(f"peers: {PEER_LABEL[name]} not given or not executable ({exe}): skipped", file=sys.stderr)
     return found

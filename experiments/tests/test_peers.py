@@ -132,6 +132,24 @@ class PeersTest(unittest.TestCase):
         self.assertIn("÷ Mitsuba 0.6 RGB", md)
         self.assertNotIn("÷ Tungsten", md)
 
+    def test_executables_given_by_relative_paths_still_run(self):
+        # The renderers run in a scratch folder; a path relative to the caller's folder (as in
+        # `--peers-bin ../shared/peers/bin`) must still name the same executable there.
+        (self.dir / "mitsuba").mkdir()
+        (self.dir / "tungsten").mkdir()
+        (self.dir / "bin").mkdir()
+        (self.dir / "mitsuba" / "s.xml").write_text(XML)
+        (self.dir / "tungsten" / "s.json").write_text(JSON)
+        (self.dir / "fake_mitsuba.py").write_text(FAKE_MITSUBA)
+        script(self.dir / "bin" / "iris", HERE / "fake_render.py")
+        script(self.dir / "bin" / "mitsuba06", self.dir / "fake_mitsuba.py")
+        r = subprocess.run([sys.executable, str(HERE.parent / "perf" / "peers.py"), "--iris", "bin/iris",
+                            "--mitsuba-rgb", "bin/mitsuba06", "--scenes", ".", "--meshes", ".", "--scene-list", "s",
+                            "--rounds", "1", "--out", "out"], capture_output=True, text=True, timeout=120, cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        times = json.loads((self.dir / "out" / "peers.json").read_text())["side_by_side"]["s"]["times"]
+        self.assertEqual(sorted(times), ["iris-rgb", "iris-s16", "iris-s4", "mts-rgb"])
+
     def test_equal_time_runs_iris_with_both_sobol_samplers(self):
         (self.dir / "mitsuba").mkdir()
         (self.dir / "mitsuba" / "s.xml").write_text(XML)
