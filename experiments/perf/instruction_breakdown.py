@@ -3,8 +3,9 @@
 item 1): callgrind instruction counts of one-thread renders, per camera sample, split into the
 functions the render loop spends them in.
 
-Wall time says how far iris is from a peer; instruction counts say where: they are exact and repeat
-to the instruction (no machine noise), so a small scene at a few samples per pixel suffices. Each
+Wall time says how far iris is from a peer; instruction counts say where: they have no machine
+noise (two runs of the render loop differ by a few hundred instructions in billions, from memory
+allocation), so a small scene at a few samples per pixel suffices. Each
 renderer renders the peer scene (../shared/peers/scenes/mitsuba/NAME.xml, 320×240) at `--spp`
 samples per pixel with one thread under `valgrind --tool=callgrind`; the table gives the inclusive
 instructions of the render loop and of named functions inside it, divided by the number of camera
